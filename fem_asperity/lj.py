@@ -1,0 +1,62 @@
+"""Lennard-Jones 9-3 surface law and its closed-form integrals over a rigid sphere (eqs. 4, 8).
+
+Sign convention: traction p > 0 is repulsive (compressive), p < 0 attractive (tensile).
+Gaps are in units of ε (h̄ = h/ε); forces in 2πRΔγ; deflections in ε, positive toward the sphere.
+"""
+
+import numpy as np
+
+from ._checks import positive
+
+#: ∫₀^∞(1+t²)⁻⁹dt / ∫₀^∞(1+t²)⁻³dt, the constant of eq. (4).
+K_9_3 = 2145.0 / 4096.0
+#: Gap h/ε of the most tensile traction, 3^(1/6).
+GAP_MAX_TENSION = 3.0 ** (1.0 / 6.0)
+#: Most tensile traction in units of Δγ/ε: −16/(9√3) = −1.0264.
+MAX_TENSION = -16.0 / (9.0 * np.sqrt(3.0))
+
+
+def traction(h, *, dgamma=1.0, eps=1.0):
+    """LJ 9-3 traction p(h) = (8Δγ/3ε)[(ε/h)⁹ − (ε/h)³].
+
+    With the defaults (dgamma = eps = 1) `h` is the gap in ε and p comes in Δγ/ε;
+    with dgamma in J/m² and eps, h in m, p comes in Pa. Requires h > 0.
+    """
+    dgamma, eps = positive("dgamma", dgamma), positive("eps", eps)
+    s = eps / positive("h", h)
+    return 8.0 * dgamma / (3.0 * eps) * (s**9 - s**3)
+
+
+def traction_slope(h, *, dgamma=1.0, eps=1.0):
+    """dp/dh = (8Δγ/3ε²)[−9(ε/h)¹⁰ + 3(ε/h)⁴], the tangent stiffness of the LJ springs.
+
+    Units as in `traction`, divided by the unit of h (Δγ/ε² by default, Pa/m in SI).
+    """
+    dgamma, eps = positive("dgamma", dgamma), positive("eps", eps)
+    s = eps / positive("h", h)
+    return 8.0 * dgamma / (3.0 * eps**2) * (-9.0 * s**10 + 3.0 * s**4)
+
+
+def bradley_force(delta):
+    """Force on a rigid sphere over a rigid flat at separation δ̄ (eq. 8): (δ̄⁻⁸ − 4δ̄⁻²)/3.
+
+    `delta` in ε (> 0); force in 2πRΔγ, negative = attractive; minimum −1 at δ̄ = 1 (Bradley).
+    """
+    d = positive("delta", delta)
+    return (d**-8 - 4.0 * d**-2) / 3.0
+
+
+def centre_deflection(x, *, mu):
+    """Elastic deflection h̄o at r = 0 under the LJ traction of a rigid sphere at gap x̄o (eq. 4).
+
+    h̄o = √2 π μ^(3/2) [x̄o^(−5/2) − (2145/4096) x̄o^(−17/2)], in ε, positive toward the sphere
+    (Boussinesq integral over the undeformed surface). `x` in ε (> 0), `mu` > 0.
+    """
+    x = positive("x", x)
+    mu = positive("mu", mu)
+    return np.sqrt(2.0) * np.pi * mu**1.5 * (x**-2.5 - K_9_3 * x**-8.5)
+
+
+def separation_from_gap(x, *, mu):
+    """Minimum surface separation δ̄o = x̄o + h̄o(x̄o) (eq. 5), in ε."""
+    return positive("x", x) + centre_deflection(x, mu=mu)
