@@ -1,0 +1,59 @@
+"""Command-line plumbing shared by the package's entry points: one-line errors, tables, JSON."""
+
+import argparse
+import json
+import math
+import os
+import sys
+import warnings
+
+from ._checks import InputError
+
+
+class Parser(argparse.ArgumentParser):
+    """An ArgumentParser whose usage errors are one line on stderr and exit code 2."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def _warn_one_line(message, *_args, **_kwargs):
+    print(f"warning: {message}", file=sys.stderr)
+
+
+def run(main, prog, argv=None):
+    """Call `main(argv)`: warnings print as one line, an `InputError` as one line + exit code 2."""
+    with warnings.catch_warnings():
+        warnings.showwarning = _warn_one_line
+        try:
+            return main(argv)
+        except InputError as exc:
+            print(f"{prog}: error: {exc}", file=sys.stderr)
+            return 2
+        except BrokenPipeError:  # output piped into e.g. `head`, which stopped reading
+            sys.stdout = open(os.devnull, "w")
+            return 0
+
+
+def dump_json(obj):
+    """Print `obj` as JSON, refusing NaN (which is not JSON)."""
+    print(json.dumps(obj, indent=2, allow_nan=False))
+
+
+def _cell(value):
+    if value is None:
+        return "-"
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if isinstance(value, float):
+        return f"{value:.5g}" if math.isfinite(value) else str(value)
+    return str(value)
+
+
+def print_table(rows, columns):
+    """Print dict rows as an aligned plain-text table with the given column keys."""
+    cells = [[_cell(row[c]) for c in columns] for row in rows]
+    widths = [max(len(c), *(len(r[i]) for r in cells)) for i, c in enumerate(columns)]
+    print("  ".join(c.rjust(w) for c, w in zip(columns, widths)))
+    for r in cells:
+        print("  ".join(v.rjust(w) for v, w in zip(r, widths)))
