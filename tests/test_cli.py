@@ -1,0 +1,78 @@
+"""Command lines as a user runs them: `python -m fem_asperity ...` and `python -m validation all`."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+
+def cli(*args, cwd=None):
+    return subprocess.run([sys.executable, "-m", *args], capture_output=True, text=True, cwd=cwd)
+
+
+def test_laws_json_has_exactly_the_documented_keys():
+    done = cli("fem_asperity", "laws", "--mu", "0.3", "--json")
+    assert done.returncode == 0, done.stderr
+    events = json.loads(done.stdout)
+    assert set(events) == {"mu", "p_max", "delta_oc", "delta_o_star", "a_c", "jump_in", "x_oc"}
+    assert events["mu"] == 0.3 and events["jump_in"] is False and events["x_oc"] is None
+    assert events["p_max"] < 0
+    assert events["delta_oc"] == pytest.approx(1 + 0.922 * 0.3)
+
+
+def test_laws_table_for_several_mu():
+    done = cli("fem_asperity", "laws", "--mu", "0.1", "2")
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    header = next(i for i, line in enumerate(lines) if line.split()[:2] == ["mu", "p_max"])
+    assert len(lines) == header + 3 and lines[-1].split()[5] == "yes"
+
+
+def test_laws_from_physical_inputs_match_mu():
+    done = cli("fem_asperity", "laws", "--E-star", "1e9", "--dgamma", "0.05", "--eps", "3e-10",
+               "--R", "1e-6", "--json")
+    mu = (1e-6 * 0.05**2 / (1e9**2 * 3e-10**3)) ** (1 / 3)
+    assert json.loads(done.stdout)["mu"] == pytest.approx(mu)
+
+
+@pytest.mark.parametrize("args", [
+    ["laws", "--mu", "-1"], ["laws", "--mu", "nan"], ["laws", "--mu", "abc"], ["laws"],
+    ["laws", "--mu", "1", "--R", "1e-6"],
+    ["laws", "--E-star", "1e9", "--dgamma", "0.05", "--eps", "3e-10", "--R", "1e-9"],
+    ["scales", "--E1", "1e9", "--nu1", "0.5", "--dgamma", "0.05", "--eps", "3e-10", "--R", "1e-6"],
+])
+def test_bad_input_gives_exit_code_2_and_one_line(args):
+    done = cli("fem_asperity", *args)
+    assert done.returncode == 2 and done.stdout == ""
+    assert len(done.stderr.strip().splitlines()) == 1 and "error" in done.stderr
+
+
+def test_scales_json():
+    done = cli("fem_asperity", "scales", "--E1", "1e9", "--nu1", "0.3", "--dgamma", "0.05",
+               "--eps", "3e-10", "--R", "1e-6", "--json")
+    row = json.loads(done.stdout)
+    assert row["E_star"] == pytest.approx(1e9 / (1 - 0.09))
+    assert row["force"] == pytest.approx(2 * 3.141592653589793 * 1e-6 * 0.05)
+
+
+def test_validation_all_writes_its_files(tmp_path):
+    out = tmp_path / "out"
+    done = cli("validation", "all", "--out", str(out), "--json")
+    assert done.returncode == 0, done.stderr
+    summary = json.loads(done.stdout)
+    assert sorted(p.name for p in out.iterdir()) == ["paper_laws.json", "paper_laws.png", "report.md"]
+    assert summary["not_yet_available"]  # says what is not there yet
+    report = (out / "report.md").read_text()
+    assert "Not yet judged" in report and "| holds |" in report
+    table = json.loads((out / "paper_laws.json").read_text())
+    assert len(table["rows"]) == 101 and table["constants"]["c_off"] == 1.98
+    assert (out / "paper_laws.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_validation_all_refuses_a_file_as_output_folder(tmp_path):
+    target = tmp_path / "taken"
+    target.write_text("keep me")
+    done = cli("validation", "all", "--out", str(target))
+    assert done.returncode == 2 and len(done.stderr.strip().splitlines()) == 1
+    assert target.read_text() == "keep me"
