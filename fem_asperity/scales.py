@@ -26,7 +26,8 @@ def effective_modulus(*, E1, nu1, E2=None, nu2=None):
         return 1.0 / compliance
     if nu2 is None:
         raise InputError("E2 given without nu2: Poisson's ratio nu2 in (-1, 0.5) is required")
-    return 1.0 / (compliance + (1.0 - poisson("nu2", nu2) ** 2) / positive("E2", E2, "Pa"))
+    E2 = positive("E2", E2, "Pa (leave E2 and nu2 out for a rigid body)")
+    return 1.0 / (compliance + (1.0 - poisson("nu2", nu2) ** 2) / E2)
 
 
 def tabor_parameter(*, E_star, dgamma, eps, R):

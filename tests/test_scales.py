@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from fem_asperity import DerjaguinWarning, InputError, Scales, effective_modulus, tabor_parameter
+from fem_asperity.lj import centre_deflection
 
 # Silicon-like sphere on a compliant film: hand values below use these.
 E, NU, DGAMMA, EPS, R = 100e9, 0.25, 0.1, 0.3e-9, 1e-6
@@ -67,6 +68,11 @@ def test_poisson_ratio_outside_open_interval_is_refused(name, bad):
         effective_modulus(**kwargs)
 
 
+def test_infinite_second_modulus_points_to_the_rigid_option():
+    with pytest.raises(InputError, match="leave E2 and nu2 out for a rigid body"):
+        effective_modulus(E1=E, nu1=NU, E2=math.inf, nu2=NU)
+
+
 def test_half_specified_second_body_is_refused():
     with pytest.raises(InputError, match="nu2"):
         effective_modulus(E1=E, nu1=NU, E2=E)
@@ -106,6 +112,4 @@ def test_inverse_needs_exactly_one_of_modulus_or_energy():
 
 def test_error_names_offending_array_entry():
     with pytest.raises(InputError, match=r"mu must be in \(0, inf\); got -2.0"):
-        from fem_asperity.lj import centre_deflection
-
         centre_deflection(np.ones(3), mu=np.array([1.0, -2.0, 3.0]))

@@ -31,8 +31,11 @@ def build_parser():
     return parser
 
 
+STEPS = 3
+
+
 def _step(i, text):
-    print(f"[{i}/{len(FILES)}] {text}", file=sys.stderr, flush=True)
+    print(f"[{i}/{STEPS}] {text}", file=sys.stderr, flush=True)
 
 
 def run_all(out, command):
