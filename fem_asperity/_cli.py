@@ -22,7 +22,8 @@ def _warn_one_line(message, *_args, **_kwargs):
 
 
 def run(main, prog, argv=None):
-    """Call `main(argv)`: warnings print as one line, an `InputError` as one line + exit code 2."""
+    """Call `main(argv)`: warnings print as one line, an `InputError` as one line + exit code 2,
+    an `OSError` (e.g. an output folder that cannot be written) as one line + exit code 1."""
     with warnings.catch_warnings():
         warnings.showwarning = _warn_one_line
         try:
@@ -33,6 +34,9 @@ def run(main, prog, argv=None):
         except BrokenPipeError:  # output piped into e.g. `head`, which stopped reading
             sys.stdout = open(os.devnull, "w")
             return 0
+        except OSError as exc:
+            print(f"{prog}: error: {exc}", file=sys.stderr)
+            return 1
 
 
 def dump_json(obj):

@@ -11,7 +11,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from ._checks import InputError, in_range, positive
-from .lj import bradley_force, centre_deflection
+from .lj import bradley_force, separation_from_gap
 
 
 def _out(x):
@@ -106,8 +106,7 @@ class AsperityLaws:
 
     def _jump_separation(self, mu):
         """δ̄oc = δ̄o* at jump-in, eqs. (12) + (4) + (5) = eq. (13)."""
-        x = self._jump_gap(mu)
-        return x + centre_deflection(x, mu=mu)
+        return separation_from_gap(self._jump_gap(mu), mu=mu)
 
     def delta_oc(self, mu):
         """Separation at P̄max: eq. (7) 1 + c_oc μ below mu_jump, eq. (13) from it on."""

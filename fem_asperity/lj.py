@@ -10,9 +10,7 @@ from ._checks import positive
 
 #: ∫₀^∞(1+t²)⁻⁹dt / ∫₀^∞(1+t²)⁻³dt, the constant of eq. (4).
 K_9_3 = 2145.0 / 4096.0
-#: Gap h/ε of the most tensile traction, 3^(1/6).
-GAP_MAX_TENSION = 3.0 ** (1.0 / 6.0)
-#: Most tensile traction in units of Δγ/ε: −16/(9√3) = −1.0264.
+#: Most tensile traction (at h = 3^(1/6) ε) in units of Δγ/ε: −16/(9√3) = −1.0264.
 MAX_TENSION = -16.0 / (9.0 * np.sqrt(3.0))
 
 

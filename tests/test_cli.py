@@ -70,6 +70,15 @@ def test_validation_all_writes_its_files(tmp_path):
     assert (out / "paper_laws.png").read_bytes()[:4] == b"\x89PNG"
 
 
+def test_validation_all_unwritable_output_is_one_line_and_writes_nothing(tmp_path):
+    blocker = tmp_path / "taken"
+    blocker.write_text("a file where a folder is needed")
+    done = cli("validation", "all", "--out", str(blocker / "out"))
+    assert done.returncode == 1 and "Traceback" not in done.stderr
+    assert len(done.stderr.strip().splitlines()) == 2  # the progress line, then the error
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["taken"]
+
+
 def test_validation_all_refuses_a_file_as_output_folder(tmp_path):
     target = tmp_path / "taken"
     target.write_text("keep me")
