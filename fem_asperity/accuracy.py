@@ -1,0 +1,61 @@
+"""Accuracy presets: how fine the FE mesh and the continuation are for a given μ.
+
+The surface element size follows the cohesive zone at the contact edge, whose width shrinks like
+μ^(−3/2) √(Rε); the finely meshed strip covers the JKR contact radius at the deepest load.
+"""
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ._checks import InputError, positive
+from .continuation import TraceSettings
+
+#: Surface element size relative to the `default` preset, and the continuation's turn limit.
+PRESETS = {
+    "draft": (2.0, 0.2),
+    "default": (1.0, 0.1),
+    "fine": (0.5, 0.05),
+}
+#: Surface element size of `default`: min(H_MAX, H_COHESIVE · μ^(−3/2)), in √(Rε).
+H_MAX, H_COHESIVE = 0.1, 0.25
+#: Truncation radius/depth of the half-space, in √(Rε): separations shift by ~2μ^(3/2)|P̄|/L.
+DOMAIN_SIZE = 1e5
+
+
+@dataclass(frozen=True)
+class Discretisation:
+    """Everything that sets the numerical resolution of one curve (lengths in √(Rε))."""
+
+    name: str
+    h_surface: float
+    r_fine: float
+    size: float = DOMAIN_SIZE
+    grading: float = 0.5
+    order: int = 2
+    trace: TraceSettings = TraceSettings()
+
+    def coarsened(self, factor=2.0):
+        """The same discretisation with surface elements `factor` times larger (error estimate)."""
+        return replace(self, name=f"{self.name}/coarse", h_surface=self.h_surface * factor)
+
+
+def jkr_radius(load, mu):
+    """JKR contact radius ā at the force P̄ = `load` (≥ −3/4 ... any compressive value), in √(Rε)."""
+    return ((1.5 * np.pi) * mu**1.5 * (load + 1.5 + np.sqrt(3.0 * load + 2.25))) ** (1.0 / 3.0)
+
+
+def discretisation(mu, accuracy="default", *, p_end=1.0):
+    """`Discretisation` for Tabor parameter `mu` and a preset name (draft, default, fine)."""
+    mu = positive("mu", mu)
+    if accuracy not in PRESETS:
+        raise InputError(f"accuracy must be one of {', '.join(PRESETS)}; got {accuracy!r}")
+    factor, turn = PRESETS[accuracy]
+    h_surface = factor * min(H_MAX, H_COHESIVE * mu**-1.5)
+    r_fine = max(4.0, 1.3 * jkr_radius(p_end, mu))
+    return Discretisation(
+        name=accuracy,
+        h_surface=h_surface,
+        r_fine=r_fine,
+        trace=TraceSettings(turn=turn, p_end=p_end),
+    )

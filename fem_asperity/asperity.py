@@ -1,0 +1,146 @@
+"""The FE single-asperity curve: `solve_curve(mu, ...)` → `CurveResult` (curve, events, provenance).
+
+Method: axisymmetric P2 finite elements of the (layered) half-space (scikit-fem), condensed onto
+the surface; LJ 9-3 traction on the surface as a nonlinear boundary form with its consistent
+tangent; pseudo-arc-length continuation of the whole equilibrium curve; approach and retraction
+under δ̄o control read off it, jumps included (see `paths`). The error estimate is the change of
+each event when the surface elements are twice as large.
+"""
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ._checks import in_range, positive
+from .accuracy import discretisation
+from .continuation import trace
+from .curve import Curve, Events, read_events
+from .elastic import HalfSpace, Solid
+from .mesh import graded_mesh
+from .paths import equilibrium_curve, walk
+from .surface import LJSurface
+
+#: Event keys compared between the two meshes of the error estimate.
+ESTIMATED = ("p_max", "delta_oc", "a_c", "delta_o_star", "x_oc", "delta_jump_in", "p_jump_after",
+             "p_off", "delta_jump_out")
+
+
+@dataclass
+class Model:
+    """The solved FE model behind a curve (kept for field output): mesh, half-space, surface, trace."""
+
+    half_space: HalfSpace
+    surface: LJSurface
+    trace: object
+
+
+@dataclass(frozen=True)
+class CurveResult:
+    """One approach + retraction at Tabor parameter `mu`, and how it was obtained.
+
+    equilibrium: the traced equilibrium curve (stable and unstable branches).
+    approach, retraction: the paths under δ̄o control (jumps as consecutive points at equal δ̄o).
+    events: `Events` read off the paths. error_estimate: |event − event on the coarser mesh| per
+    key (None where not estimated). dofs, surface_nodes, points, newton_iterations, wall_s: cost.
+    """
+
+    mu: float
+    accuracy: str
+    solid: Solid
+    equilibrium: Curve
+    approach: Curve
+    retraction: Curve
+    events: Events
+    error_estimate: dict | None
+    dofs: int
+    surface_nodes: int
+    points: int
+    newton_iterations: int
+    wall_s: float
+    method: str = "fem"
+    model: Model | None = field(default=None, repr=False, compare=False)
+
+    def records(self):
+        """JSON-ready dict: the command line's keys (dimensionless, tensile forces negative)."""
+        return {
+            "mu": self.mu,
+            "method": self.method,
+            "accuracy": self.accuracy,
+            **self.events.records(),
+            "error_estimate": self.error_estimate,
+            "dofs": self.dofs,
+            "surface_nodes": self.surface_nodes,
+            "points": self.points,
+            "newton_iterations": self.newton_iterations,
+            "wall_s": self.wall_s,
+        }
+
+
+def _solve_once(mu, disc, solid, radius_ratio, progress):
+    start = time.perf_counter()
+    mesh = graded_mesh(h_surface=disc.h_surface, r_fine=disc.r_fine, size=disc.size,
+                       grading=disc.grading, layer_thickness=solid.layer_thickness)
+    half_space = HalfSpace(mesh, order=disc.order, solid=solid)
+    surface = LJSurface(half_space, mu, radius_ratio=radius_ratio)
+    traced = trace(surface, disc.trace, progress=progress)
+    curve = equilibrium_curve(traced)
+    order = np.arange(len(curve))
+    approach, jumps_in = walk(surface, traced, curve, order)
+    retraction, jumps_out = walk(surface, traced, curve, order[::-1])
+    return CurveResult(
+        mu=mu,
+        accuracy=disc.name,
+        solid=solid,
+        equilibrium=curve,
+        approach=approach,
+        retraction=retraction,
+        events=read_events(approach, retraction, jumps_in, jumps_out),
+        error_estimate=None,
+        dofs=half_space.dofs,
+        surface_nodes=half_space.r_nodes.size,
+        points=len(curve),
+        newton_iterations=traced.newton_iterations,
+        wall_s=time.perf_counter() - start,
+        model=Model(half_space, surface, traced),
+    )
+
+
+def _difference(fine, coarse):
+    """|fine − coarse| per estimated key; None where either is missing (e.g. no jump on one)."""
+    a, b = fine.events.records(), coarse.events.records()
+    return {k: (abs(a[k] - b[k]) if a[k] is not None and b[k] is not None else None)
+            for k in ESTIMATED}
+
+
+def solve_curve(mu, *, accuracy="default", solid=Solid(), radius_ratio=None, p_end=1.0,
+                error_estimate=True, progress=None):
+    """Approach and retraction of a rigid sphere on the half-space at Tabor parameter `mu`.
+
+    accuracy: 'draft', 'default' or 'fine' (see `accuracy.PRESETS`).
+    solid: `Solid` (homogeneous by default; a layer with thickness in √(Rε)).
+    radius_ratio: R/ε for the exact sphere profile instead of Derjaguin's parabola (None).
+    p_end: the approach goes on until P̄ reaches this compressive force (2πRΔγ units).
+    error_estimate: also solve on a mesh with twice as large surface elements and report the
+        change of every event (costs about half as much again).
+    progress: callable(fraction in [0, 1]) for a progress bar.
+    Returns a `CurveResult`; raises `ContinuationError` if the path cannot be followed.
+    """
+    mu = in_range("mu", mu, 0.0, 1e4)
+    positive("p_end", p_end)
+    if radius_ratio is not None:
+        in_range("radius_ratio", radius_ratio, 10.0, np.inf, closed_lo=True)
+    disc = discretisation(mu, accuracy, p_end=p_end)
+    share = 0.7 if error_estimate else 1.0
+    report = (lambda f: progress(share * f)) if progress else None
+    result = _solve_once(mu, disc, solid, radius_ratio, report)
+    if not error_estimate:
+        return result
+    coarse_report = (lambda f: progress(share + (1.0 - share) * f)) if progress else None
+    coarse = _solve_once(mu, disc.coarsened(), solid, radius_ratio, coarse_report)
+    return CurveResult(
+        **{k: getattr(result, k) for k in result.__dataclass_fields__ if k not in
+           ("error_estimate", "wall_s")},
+        error_estimate=_difference(result, coarse),
+        wall_s=result.wall_s + coarse.wall_s,
+    )

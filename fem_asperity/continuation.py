@@ -1,0 +1,215 @@
+"""Pseudo-arc-length continuation of the surface problem: the whole equilibrium curve, both branches.
+
+The curve is traced in the plane of the centre gap x̄o = δ − w(0) and the sphere position δ̄o:
+the constraint t_x(x − x_k) + t_δ(δ − δ_k) = Δs fixes each new point at arc length Δs from the last
+one along the previous tangent (t_x, t_δ). The bordered Jacobian stays regular at the folds of δ̄o
+(jump-in, jump-out), so the unstable branch between them is traced like any other point.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.linalg import LinAlgError, cho_factor, lu_factor, lu_solve
+
+#: A Newton step never lets a gap fall below this fraction of its current value.
+_GAP_KEEP = 0.2
+
+
+class ContinuationError(RuntimeError):
+    """The continuation could not proceed (Newton failed at the smallest step)."""
+
+
+@dataclass(frozen=True)
+class TraceSettings:
+    """Step control of the continuation (all lengths in ε, forces in 2πRΔγ, radii in √(Rε)).
+
+    dp, da: largest change of P̄ and of ā_c between neighbouring points.
+    turn: largest turn between points, in radians, of the tangent in the (x̄o, δ̄o) plane (keeps
+        points dense at the folds) and of the chord in the (δ̄o, P̄) plane (dense at the extremes
+        of P̄); folds and extremes are then located by parabolas through three points.
+    x_start: centre gap of the first point (the force there is ≈ −(4/3) x_start⁻²).
+    p_end: the approach ends once the force is this compressive.
+    tol: Newton tolerance on the increment (ε) and the relative residual.
+    max_newton, target_newton: Newton iterations allowed per point, and the count the step
+        size aims at (steps needing more are accepted but the next step is shorter).
+    """
+
+    dp: float = 0.05
+    da: float = 0.1
+    turn: float = 0.05
+    ds_max: float = 2.0
+    ds_min: float = 1e-7
+    x_start: float = 40.0
+    p_end: float = 1.0
+    tol: float = 1e-9
+    max_newton: int = 10
+    target_newton: int = 4
+    max_points: int = 20000
+
+
+@dataclass
+class Trace:
+    """Raw continuation output, one entry per converged point, ordered along the curve."""
+
+    delta: list = field(default_factory=list)
+    x: list = field(default_factory=list)
+    p: list = field(default_factory=list)
+    area: list = field(default_factory=list)
+    a_c: list = field(default_factory=list)
+    stable: list = field(default_factory=list)
+    states: list = field(default_factory=list)
+    newton_iterations: int = 0
+    rejected_steps: int = 0
+
+    def append(self, surface, w, delta, jac):
+        area, radius = surface.contact(w, delta)
+        self.delta.append(delta)
+        self.x.append(surface.centre_gap(w, delta))
+        self.p.append(surface.force(w, delta))
+        self.area.append(area)
+        self.a_c.append(radius)
+        self.stable.append(is_positive_definite(jac))
+        self.states.append(w.copy())
+
+
+def is_positive_definite(matrix):
+    """True if the symmetric `matrix` has a Cholesky factor (stable equilibrium under fixed δ)."""
+    try:
+        cho_factor(matrix, check_finite=False)
+    except LinAlgError:
+        return False
+    return True
+
+
+def _bordered(surface, w, delta, direction):
+    """(∂g/∂w, LU of [[∂g/∂w, ∂g/∂δ], [constraint row along `direction`]]) at (w, δ)."""
+    jac, g_delta = surface.tangent(w, delta)
+    n = g_delta.size
+    matrix = np.empty((n + 1, n + 1))
+    matrix[:n, :n] = jac
+    matrix[:n, n] = g_delta
+    matrix[n, :] = 0.0
+    matrix[n, 0] = -direction[0]  # x = δ − w0
+    matrix[n, n] = direction[0] + direction[1]
+    return jac, lu_factor(matrix, check_finite=False)
+
+
+def _constraint(surface, w, delta, direction, anchor, ds):
+    x = surface.centre_gap(w, delta)
+    return direction[0] * (x - anchor[0]) + direction[1] * (delta - anchor[1]) - ds
+
+
+def correct(surface, w, delta, direction, anchor, ds, *, factor=None, tol=1e-9, max_newton=12):
+    """Newton with a gap-preserving, residual-decreasing line search on the bordered system.
+
+    Solves g(w, δ) = 0 with direction·((x, δ) − anchor) = ds. A given LU `factor` of the bordered
+    matrix (same `direction`) is reused while it makes the residual fall at least twofold per
+    iteration (chord steps); otherwise the matrix is refactored at the current iterate.
+    Returns (w, δ, iterations) or None if it does not converge.
+    """
+    w, delta, lu = w.copy(), float(delta), factor
+    for iteration in range(1, max_newton + 1):
+        g = surface.residual(w, delta)
+        c = _constraint(surface, w, delta, direction, anchor, ds)
+        if lu is None:
+            lu = _bordered(surface, w, delta, direction)[1]
+        step = lu_solve(lu, -np.append(g, c), check_finite=False)
+        dw, dd = step[:-1], step[-1]
+        h = surface.gap(w, delta)
+        dh = dd - surface.interp @ dw
+        shrinking = dh < 0.0
+        alpha = 1.0
+        if shrinking.any():
+            alpha = min(1.0, float(np.min((_GAP_KEEP - 1.0) * h[shrinking] / dh[shrinking])))
+        scale = 1.0 + np.max(np.abs(surface.stiffness @ w))
+        merit = np.linalg.norm(g) / scale + abs(c)
+        for _ in range(20):
+            w_try, d_try = w + alpha * dw, delta + alpha * dd
+            g_try = surface.residual(w_try, d_try)
+            c_try = _constraint(surface, w_try, d_try, direction, anchor, ds)
+            merit_try = np.linalg.norm(g_try) / scale + abs(c_try)
+            if merit_try <= (1.0 - 1e-4 * alpha) * merit:
+                break
+            alpha *= 0.5
+        if merit_try > 0.1 * merit:
+            lu = None
+        w, delta = w_try, d_try
+        increment = alpha * max(np.max(np.abs(dw)), abs(dd))
+        if increment <= tol * (1.0 + np.max(np.abs(w))) and np.max(np.abs(g_try)) <= tol * scale:
+            return w, delta, iteration
+    return None
+
+
+def _tangent(lu, n):
+    """Unit tangent (dw/ds, dδ/ds, planar (dx/ds, dδ/ds)) in the (x̄o, δ̄o) metric, oriented
+    along the constraint row of the bordered factor `lu` (so the trace keeps its direction)."""
+    rhs = np.zeros(n + 1)
+    rhs[n] = 1.0
+    tau = lu_solve(lu, rhs, check_finite=False)
+    planar = np.array([tau[n] - tau[0], tau[n]])
+    norm = np.hypot(*planar)
+    return tau[:n] / norm, tau[n] / norm, planar / norm
+
+
+def _angle(a, b):
+    """Angle between two plane vectors, in radians (0 if either is zero)."""
+    norm = np.hypot(*a) * np.hypot(*b)
+    return float(np.arccos(np.clip(a @ b / norm, -1.0, 1.0))) if norm > 0.0 else 0.0
+
+
+def trace(surface, settings=TraceSettings(), progress=None):
+    """Trace the equilibrium curve from x̄o = x_start (δ decreasing) until P̄ ≥ p_end.
+
+    `progress(fraction)` is called after each accepted point. Raises ContinuationError if the
+    step falls below ds_min or the point budget runs out.
+    """
+    s = settings
+    result = Trace()
+    n = surface.r_nodes.size
+    gap_control = np.array([1.0, 0.0])
+    start = correct(surface, np.zeros(n), s.x_start, gap_control, (s.x_start, 0.0), 0.0, tol=s.tol)
+    if start is None:
+        raise ContinuationError(f"no equilibrium found at the start x = {s.x_start}")
+    w, delta, its = start
+    result.newton_iterations += its
+    direction = np.array([-1.0, -1.0]) / np.sqrt(2.0)
+    jac, lu = _bordered(surface, w, delta, direction)
+    result.append(surface, w, delta, jac)
+    tangent = _tangent(lu, n)
+    previous_chord = np.array([-1.0, 0.0])
+    ds = 0.1
+    log_span = np.log(s.x_start / 0.8)
+    while result.p[-1] < s.p_end or not result.stable[-1]:
+        if len(result.delta) >= s.max_points:
+            raise ContinuationError(f"point budget of {s.max_points} exhausted at δ = {delta:.6g}")
+        dw, dd, planar = tangent
+        anchor = (result.x[-1], delta)
+        step = correct(surface, w + ds * dw, delta + ds * dd, direction, anchor,
+                       ds * (direction @ planar), factor=lu, tol=s.tol, max_newton=s.max_newton)
+        if step is not None:
+            w_new, d_new, its = step
+            result.newton_iterations += its
+            area, radius = surface.contact(w_new, d_new)
+            chord = np.array([d_new - delta, surface.force(w_new, d_new) - result.p[-1]])
+            da = abs(radius - result.a_c[-1])
+            jac_new, lu_new = _bordered(surface, w_new, d_new, planar)
+            tangent_new = _tangent(lu_new, n)
+            turn = max(_angle(tangent_new[2], planar), _angle(chord, previous_chord))
+            ratio = max(abs(chord[1]) / s.dp, da / s.da, turn / s.turn, 1e-3)
+            if ratio <= 1.0 or ds <= s.ds_min:
+                w, delta, direction, lu, tangent = w_new, d_new, planar, lu_new, tangent_new
+                previous_chord = chord
+                result.append(surface, w, delta, jac_new)
+                if progress is not None:
+                    progress(min(1.0, np.log(s.x_start / max(result.x[-1], 1e-3)) / log_span))
+                effort = min(1.0, s.target_newton / its)
+                ds = min(ds * min(2.0, 0.8 / ratio) * effort, s.ds_max)
+                continue
+            ds_next = ds * max(0.2, 0.8 / ratio)
+        else:
+            ds_next = 0.5 * ds
+        result.rejected_steps += 1
+        if ds <= s.ds_min:
+            raise ContinuationError(f"Newton failed at the smallest step near δ = {delta:.6g}")
+        ds = max(ds_next, s.ds_min)
+    return result

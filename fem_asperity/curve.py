@@ -1,0 +1,164 @@
+"""Results along a path: the `Curve` arrays and the `Events` read off the approach and retraction.
+
+Units: δ̄o, x̄o in ε; P̄ in 2πRΔγ (negative = tensile); Ā in εR; ā_c in √(εR).
+"""
+
+import csv
+import io
+from dataclasses import asdict, dataclass, fields
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Curve:
+    """Points along a path (the equilibrium curve, or the approach/retraction under δ̄o control).
+
+    `stable`: the point is a local energy minimum at fixed δ̄o. `branch`: segment id, increased at
+    every change of stability (equilibrium curve) or at every jump (approach/retraction paths).
+    """
+
+    delta: np.ndarray
+    x: np.ndarray
+    p: np.ndarray
+    area: np.ndarray
+    a_c: np.ndarray
+    stable: np.ndarray
+    branch: np.ndarray
+
+    def __len__(self):
+        return self.delta.size
+
+    def csv(self):
+        """The curve as CSV text with a header row (delta_o, x_o, p, area, a_c, stable, branch)."""
+        out = io.StringIO()
+        writer = csv.writer(out, lineterminator="\n")
+        writer.writerow(["delta_o", "x_o", "p", "area", "a_c", "stable", "branch"])
+        for row in zip(*(getattr(self, f.name) for f in fields(self))):
+            writer.writerow([f"{v:.10g}" if isinstance(v, float) else int(v) for v in row])
+        return out.getvalue()
+
+
+def curve_from_columns(delta, x, p, area, a_c, stable, branch):
+    """Build a `Curve` from sequences, converting to float/bool/int arrays."""
+    floats = [np.asarray(v, dtype=float) for v in (delta, x, p, area, a_c)]
+    return Curve(*floats, np.asarray(stable, dtype=bool), np.asarray(branch, dtype=int))
+
+
+@dataclass(frozen=True)
+class Jump:
+    """A jump under displacement control at δ̄o = `delta`: state before (fold) and after (landing)."""
+
+    delta: float
+    x_before: float
+    p_before: float
+    p_after: float
+    a_c_after: float
+    x_after: float
+
+
+@dataclass(frozen=True)
+class Events:
+    """Characteristic values of one approach + retraction (None where an event does not occur).
+
+    p_max, delta_oc, a_c: most tensile force on approach, its δ̄o, and ā_c there.
+    delta_o_star: δ̄o of initial contact (first compressive traction) on approach.
+    jump_in / jump_out: the `Jump` records; p_off, delta_off: most tensile force on retraction.
+    """
+
+    p_max: float
+    delta_oc: float
+    a_c: float
+    delta_o_star: float | None
+    p_off: float
+    delta_off: float
+    jump_in: Jump | None
+    jump_out: Jump | None
+
+    def records(self):
+        """Flat JSON-ready dict in the command line's key names."""
+        jin, jout = self.jump_in, self.jump_out
+        return {
+            "p_max": self.p_max,
+            "delta_oc": self.delta_oc,
+            "delta_o_star": self.delta_o_star,
+            "a_c": self.a_c,
+            "jump_in": jin is not None,
+            "x_oc": jin.x_before if jin else None,
+            "delta_jump_in": jin.delta if jin else None,
+            "p_jump_before": jin.p_before if jin else None,
+            "p_jump_after": jin.p_after if jin else None,
+            "p_off": self.p_off,
+            "delta_off": self.delta_off,
+            "delta_jump_out": jout.delta if jout else None,
+            "p_jump_out_before": jout.p_before if jout else None,
+            "p_jump_out_after": jout.p_after if jout else None,
+        }
+
+
+def _vertex(t, y):
+    """Abscissa and value of the parabola through three points (t, y)."""
+    a, b, c = np.polyfit(t - t[1], y, 2)
+    if a == 0.0:
+        return t[1], y[1]
+    s = -b / (2.0 * a)
+    return t[1] + s, c - b * b / (4.0 * a)
+
+
+def _most_tensile(path):
+    """(P̄, δ̄o, ā_c) at the minimum of P̄ along `path`, located between samples.
+
+    An interior minimum of a smooth segment is refined by the parabola P̄(δ̄o) through the sample
+    and its two neighbours; a minimum at a segment's end (a jump's landing) is taken as sampled.
+    """
+    i = int(np.argmin(path.p))
+    seg = path.branch
+    if 0 < i < len(path) - 1 and seg[i - 1] == seg[i] == seg[i + 1]:
+        window = slice(i - 1, i + 2)
+        delta, p = _vertex(path.delta[window], path.p[window])
+        lo, hi = sorted((path.delta[i - 1], path.delta[i + 1]))
+        if lo <= delta <= hi:
+            a_c = np.interp(delta, *_ascending(path.delta[window], path.a_c[window]))
+            return float(p), float(delta), float(a_c)
+    return float(path.p[i]), float(path.delta[i]), float(path.a_c[i])
+
+
+def _ascending(t, y):
+    order = np.argsort(t)
+    return t[order], y[order]
+
+
+def _initial_contact(path):
+    """δ̄o where the centre gap first reaches 1 on the approach path (x̄o linear in δ̄o between
+    samples), or the jump's δ̄o if contact forms by the jump; None if it never forms."""
+    touching = np.nonzero(path.x <= 1.0)[0]
+    if touching.size == 0:
+        return None
+    k = int(touching[0])
+    if k == 0:
+        return float(path.delta[0])
+    if path.branch[k] != path.branch[k - 1]:
+        return float(path.delta[k])
+    x0, x1 = path.x[k - 1], path.x[k]
+    return float(path.delta[k - 1] + (path.delta[k] - path.delta[k - 1]) * (x0 - 1.0) / (x0 - x1))
+
+
+def read_events(approach, retraction, jumps_in, jumps_out):
+    """`Events` from the two displacement-control paths and their jumps (first jump of each)."""
+    p_max, delta_oc, a_c = _most_tensile(approach)
+    p_off, delta_off, _ = _most_tensile(retraction)
+    return Events(
+        p_max=p_max,
+        delta_oc=delta_oc,
+        a_c=a_c,
+        delta_o_star=_initial_contact(approach),
+        p_off=p_off,
+        delta_off=delta_off,
+        jump_in=jumps_in[0] if jumps_in else None,
+        jump_out=jumps_out[0] if jumps_out else None,
+    )
+
+
+def jump_record(jump):
+    """A `Jump` as a plain dict (for JSON output)."""
+    return asdict(jump)

@@ -1,0 +1,170 @@
+"""Axisymmetric linear elasticity of the (optionally layered) half-space, condensed onto its surface.
+
+Scaled variables: lengths r, z in √(Rε), displacements in ε, the substrate's E* = 1. In these
+units the physical problem σ·n = p becomes K u = μ^(3/2) F(p̄) with p̄ = p/(Δγ/ε), so the whole
+single-asperity problem depends on μ alone (Derjaguin regime). The 2π of the axisymmetric volume
+and surface measures is dropped on both sides; surface integrals carry the weight r, so that the
+force ∫ p̄ r dr is P/(2πRΔγ) directly.
+
+The LJ traction acts only on the surface and only normally, so the bulk is condensed once: the
+surface compliance C maps normal surface loads to the surface normal displacement w (upward,
+toward the sphere), and the nonlinear problem runs on the surface unknowns alone.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.linalg import splu
+from skfem import (
+    Basis,
+    BilinearForm,
+    ElementTriP1,
+    ElementTriP2,
+    ElementVector,
+    FacetBasis,
+    asm,
+    condense,
+)
+
+from ._checks import InputError, poisson, positive
+
+ELEMENTS = {1: ElementTriP1, 2: ElementTriP2}
+#: Columns of the unit-load matrix solved at once (bounds memory at n_dof × 256 doubles).
+_CHUNK = 256
+
+
+@dataclass(frozen=True)
+class Solid:
+    """Elastic solid: a homogeneous half-space, or a bonded layer on a substrate.
+
+    The substrate has E* = 1 (it defines μ); the layer has E*_layer = `layer_modulus_ratio`.
+    `layer_thickness` is t in √(Rε) (None: no layer). Poisson's ratios enter only through the
+    truncation of the domain for a homogeneous solid, and fully for a layered one.
+    """
+
+    nu: float = 0.3
+    layer_thickness: float | None = None
+    layer_modulus_ratio: float = 1.0
+    layer_nu: float = 0.3
+
+    def __post_init__(self):
+        poisson("nu", self.nu)
+        poisson("layer_nu", self.layer_nu)
+        positive("layer_modulus_ratio", self.layer_modulus_ratio)
+        if self.layer_thickness is not None:
+            positive("layer_thickness", self.layer_thickness)
+        elif self.layer_modulus_ratio != 1.0 or self.layer_nu != self.nu:
+            raise InputError("layer_modulus_ratio and layer_nu need a layer_thickness")
+
+    def lame(self, in_layer):
+        """Lamé constants (λ, G) per element; `in_layer` is a boolean array over elements."""
+        e_star = np.where(in_layer, self.layer_modulus_ratio, 1.0)
+        nu = np.where(in_layer, self.layer_nu, self.nu)
+        young = e_star * (1.0 - nu**2)
+        return young * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), young / (2.0 * (1.0 + nu))
+
+
+def _strain(u, r):
+    """Axisymmetric strains (ε_rr, ε_zz, ε_θθ, γ_rz) of a vector field (u_r, u_z)."""
+    grad = u.grad
+    return grad[0, 0], grad[1, 1], u.value[0] / r, grad[0, 1] + grad[1, 0]
+
+
+@BilinearForm
+def axisymmetric_elasticity(u, v, w):
+    """∫ σ(u):ε(v) r dr dz with σ = λ tr ε I + 2G ε, hoop strain u_r/r included."""
+    r = w.x[0]
+    eu, ev = _strain(u, r), _strain(v, r)
+    div_u, div_v = eu[0] + eu[1] + eu[2], ev[0] + ev[1] + ev[2]
+    normal = eu[0] * ev[0] + eu[1] * ev[1] + eu[2] * ev[2]
+    return (w.lam * div_u * div_v + w.shear * (2.0 * normal + eu[3] * ev[3])) * r
+
+
+class HalfSpace:
+    """Assembled elastic model on a mesh from `graded_mesh`, condensed onto the surface.
+
+    Attributes after construction:
+      r_nodes: radii of the surface unknowns (sorted), in √(Rε).
+      r_quad, weights: surface quadrature points and weights (r included), in √(Rε) and √(Rε)².
+      interp: sparse (n_quad × n_nodes) map from surface values w to w at the quadrature points.
+      compliance: dense C (n_nodes × n_nodes): w = −C·load for the normal nodal loads
+        load = interpᵀ(weights·p) with p > 0 pressing into the solid (E* = 1 units).
+      dofs: number of displacement unknowns (after the boundary conditions).
+    """
+
+    def __init__(self, mesh, *, order=1, solid=Solid(), quad_order=8):
+        if order not in ELEMENTS:
+            raise InputError(f"order must be 1 or 2; got {order!r}")
+        self.mesh, self.solid = mesh, solid
+        self.basis = Basis(mesh, ElementVector(ELEMENTS[order]()), intorder=2 * order)
+        in_layer = np.zeros(mesh.t.shape[1], dtype=bool)
+        if solid.layer_thickness is not None:
+            in_layer[mesh.subdomains["layer"]] = True
+        lam, shear = solid.lame(in_layer)
+        nqp = self.basis.X.shape[1]
+        self._lam = np.repeat(lam[:, None], nqp, axis=1)
+        self._shear = np.repeat(shear[:, None], nqp, axis=1)
+        self.stiffness = asm(axisymmetric_elasticity, self.basis, lam=self._lam, shear=self._shear)
+        fixed = np.union1d(
+            self.basis.get_dofs("axis").all("u^1"), self.basis.get_dofs("far").all()
+        )
+        self.free = self.basis.complement_dofs(fixed)
+        self.dofs = self.free.size
+        self._lu = splu(condense(self.stiffness, D=fixed, expand=False).tocsc())
+        self._surface_operator(quad_order)
+        self.compliance = self._condense()
+
+    def _surface_operator(self, quad_order):
+        fb = FacetBasis(self.mesh, self.basis.elem, facets="top", intorder=quad_order)
+        nf, nq = fb.dx.shape
+        rows = np.arange(nf * nq).reshape(nf, nq)
+        entries = [
+            (rows, np.broadcast_to(fb.element_dofs[j][:, None], (nf, nq)), phi[0].value[1])
+            for j, phi in enumerate(fb.basis)
+        ]
+        row, col, val = (np.concatenate([e[k].ravel() for e in entries]) for k in range(3))
+        full = coo_matrix((val, (row, col)), shape=(nf * nq, self.basis.N)).tocsc()
+        surface = np.intersect1d(self.basis.get_dofs("top").all("u^2"), self.free)
+        order = np.argsort(self.basis.doflocs[0, surface])
+        self.surface_dofs = surface[order]
+        self.r_nodes = self.basis.doflocs[0, self.surface_dofs]
+        self.interp = full[:, self.surface_dofs].tocsr()
+        self.r_quad = fb.global_coordinates().value[0].ravel()
+        self.weights = (fb.dx * fb.global_coordinates().value[0]).ravel()
+
+    def _condense(self):
+        """C = (K⁻¹)_ss over the surface normal DOFs: one factorisation, n_s back-substitutions."""
+        position = np.searchsorted(self.free, self.surface_dofs)
+        n = position.size
+        compliance = np.empty((n, n))
+        for start in range(0, n, _CHUNK):
+            cols = position[start : start + _CHUNK]
+            unit = np.zeros((self.free.size, cols.size))
+            unit[cols, np.arange(cols.size)] = 1.0
+            compliance[:, start : start + cols.size] = self._lu.solve(unit)[position]
+        return 0.5 * (compliance + compliance.T)
+
+    def nodal_load(self, pressure_at_quad):
+        """Normal nodal loads interpᵀ(weights·p) for a pressure sampled at `r_quad` (E* = 1 units)."""
+        return self.interp.T @ (self.weights * pressure_at_quad)
+
+    def deflection(self, pressure_at_quad):
+        """Surface normal displacement (upward) at `r_nodes` under a pressure p (> 0 into the solid)."""
+        return -self.compliance @ self.nodal_load(pressure_at_quad)
+
+    def displacement_field(self, nodal_load):
+        """Full displacement vector (all DOFs) for normal surface loads (E* = 1 units)."""
+        rhs = np.zeros(self.free.size)
+        rhs[np.searchsorted(self.free, self.surface_dofs)] = -nodal_load
+        u = np.zeros(self.basis.N)
+        u[self.free] = self._lu.solve(rhs)
+        return u
+
+    def stress_zz(self, u):
+        """σ_zz per element (mean over its quadrature points), E* = 1 units."""
+        field = self.basis.interpolate(u)
+        r = self.basis.global_coordinates().value[0]
+        e_rr, e_zz, e_tt, _ = _strain(field, r)
+        sigma = self._lam * (e_rr + e_zz + e_tt) + 2.0 * self._shear * e_zz
+        return sigma.mean(axis=1)

@@ -1,0 +1,83 @@
+"""Displacement-control paths read off the traced equilibrium curve: folds, jumps and landings.
+
+On approach (δ̄o decreasing) the solid follows the stable branch it is on until that branch ends at
+a fold of δ̄o; past the fold no nearby equilibrium exists and it jumps, at the fold's δ̄o, to the
+next stable branch that the curve reaches at the same δ̄o (the landing, solved by Newton at fixed
+δ̄o from the interpolated state). Retraction is the same walk backwards along the curve.
+"""
+
+import numpy as np
+
+from .continuation import ContinuationError, correct
+from .curve import Jump, _vertex, curve_from_columns
+
+_COLUMNS = ("delta", "x", "p", "area", "a_c")
+
+
+def equilibrium_curve(trace):
+    """The traced curve as a `Curve`; `branch` counts the changes of stability along it."""
+    stable = np.asarray(trace.stable)
+    branch = np.concatenate([[0], np.cumsum(stable[1:] != stable[:-1])])
+    return curve_from_columns(*(getattr(trace, c) for c in _COLUMNS), stable, branch)
+
+
+def _fold(curve, i, j, descending):
+    """Values at the extremum of δ̄o between the stable sample i and the unstable sample j (a
+    minimum when δ̄o was `descending`), from parabolas in arc length through the three samples
+    centred on the more extreme of the two."""
+    pair = np.array(sorted((i, j)))
+    extreme = pair[np.argmin(curve.delta[pair] if descending else -curve.delta[pair])]
+    centre = int(np.clip(extreme, 1, len(curve) - 2))
+    three = slice(centre - 1, centre + 2)
+    steps = np.hypot(np.diff(curve.x[three]), np.diff(curve.delta[three]))
+    arc = np.concatenate([[0.0], np.cumsum(steps)])
+    s_star, delta = _vertex(arc, curve.delta[three])
+    s_star = float(np.clip(s_star, arc[0], arc[-1]))
+    values = {c: float(np.polyval(np.polyfit(arc, getattr(curve, c)[three], 2), s_star))
+              for c in ("x", "p", "a_c")}
+    return float(delta), values
+
+
+def _landing(surface, trace, curve, order, start, delta):
+    """First stable segment after position `start` of `order` that crosses δ̄o = `delta`;
+    returns (position in order after which to continue, landing values)."""
+    for pos in range(start, len(order) - 1):
+        a, b = order[pos], order[pos + 1]
+        if not (curve.stable[a] and curve.stable[b]):
+            continue
+        da, db = curve.delta[a] - delta, curve.delta[b] - delta
+        if da * db > 0.0:
+            continue
+        t = da / (da - db) if da != db else 0.0
+        guess = (1.0 - t) * trace.states[a] + t * trace.states[b]
+        solved = correct(surface, guess, delta, np.array([0.0, 1.0]), (0.0, delta), 0.0)
+        if solved is None:
+            raise ContinuationError(f"the landing at δ = {delta:.6g} did not converge")
+        w, d, _ = solved
+        area, radius = surface.contact(w, d)
+        return pos + 1, dict(delta=d, x=surface.centre_gap(w, d), p=surface.force(w, d),
+                             area=area, a_c=radius)
+    raise ContinuationError(f"no stable branch to land on at δ = {delta:.6g}")
+
+
+def walk(surface, trace, curve, order):
+    """Follow `order` (indices along the curve) under δ̄o control; returns (path Curve, jumps)."""
+    rows, jumps, branch = [], [], 0
+    pos = 0
+    while pos < len(order):
+        i = order[pos]
+        rows.append({c: getattr(curve, c)[i] for c in _COLUMNS} | {"branch": branch})
+        if pos + 1 < len(order) and not curve.stable[order[pos + 1]]:
+            descending = pos > 0 and curve.delta[i] < curve.delta[order[pos - 1]]
+            delta, before = _fold(curve, i, order[pos + 1], descending)
+            before["area"] = 0.0 if before["a_c"] <= 0.0 else np.pi * before["a_c"] ** 2
+            rows.append(dict(delta=delta, **before, branch=branch))
+            pos, after = _landing(surface, trace, curve, order, pos + 1, delta)
+            branch += 1
+            rows.append(after | {"branch": branch})
+            jumps.append(Jump(delta=delta, x_before=before["x"], p_before=before["p"],
+                              p_after=after["p"], a_c_after=after["a_c"], x_after=after["x"]))
+        pos += 1
+    columns = {c: [r[c] for r in rows] for c in (*_COLUMNS, "branch")}
+    path = curve_from_columns(**columns, stable=np.ones(len(rows), dtype=bool))
+    return path, jumps

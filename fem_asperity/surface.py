@@ -1,0 +1,104 @@
+"""The nonlinear surface problem: LJ 9-3 springs between a rigid sphere and the condensed half-space.
+
+Unknowns: the upward surface displacement w at the surface nodes (in ε) and the sphere position δ̄o
+(in ε). Equilibrium g(w, δ) = S w + μ^(3/2) Nᵀ(W p̄(h)) = 0 with S = C⁻¹ the surface stiffness,
+N the interpolation to the surface quadrature points, W their weights (r included) and
+h = δ + r²/2 − N w the Derjaguin gap (or the exact sphere profile, see `gap_profile`).
+"""
+
+import numpy as np
+from scipy.linalg import cho_factor, cho_solve
+
+from .lj import traction, traction_slope
+
+
+def derjaguin_profile(r, radius_ratio=None):
+    """Sphere height above its apex at radius r (in ε; r in √(Rε)).
+
+    None: the Derjaguin parabola r²/2. With `radius_ratio` = R/ε: the exact sphere,
+    (R/ε)(1 − √(1 − r²ε/R)), defined for r < √(R/ε); beyond the sphere's equator the gap is
+    treated as infinite.
+    """
+    if radius_ratio is None:
+        return 0.5 * r**2
+    x = np.clip(r**2 / radius_ratio, 0.0, 1.0)
+    return np.where(x < 1.0, radius_ratio * x / (1.0 + np.sqrt(1.0 - x)), np.inf)
+
+
+class LJSurface:
+    """Residual, tangent and derived quantities of the surface problem at one μ."""
+
+    def __init__(self, half_space, mu, *, radius_ratio=None):
+        self.mu = mu
+        self.derjaguin = radius_ratio is None
+        self.load_factor = mu**1.5
+        self.r_nodes = half_space.r_nodes
+        self.interp = half_space.interp
+        self.interp_t = half_space.interp.T.tocsr()
+        self.weights = half_space.weights
+        self.profile = derjaguin_profile(half_space.r_quad, radius_ratio)
+        self.node_profile = derjaguin_profile(half_space.r_nodes, radius_ratio)
+        factor = cho_factor(half_space.compliance)
+        self.stiffness = cho_solve(factor, np.eye(half_space.compliance.shape[0]))
+        self.stiffness = 0.5 * (self.stiffness + self.stiffness.T)
+
+    def gap(self, w, delta):
+        """Gap at the quadrature points, in ε."""
+        return delta + self.profile - self.interp @ w
+
+    def residual(self, w, delta):
+        """g(w, δ): out-of-balance surface loads (E* = 1 units)."""
+        h = self.gap(w, delta)
+        return self.stiffness @ w + self.load_factor * (self.interp_t @ (self.weights * traction(h)))
+
+    def tangent(self, w, delta):
+        """(∂g/∂w, ∂g/∂δ): the symmetric surface tangent and the load sensitivity to δ."""
+        slope = self.load_factor * self.weights * traction_slope(self.gap(w, delta))
+        spring = (self.interp_t @ self.interp.multiply(slope[:, None])).tocoo()
+        jac = self.stiffness.copy()
+        np.subtract.at(jac, (spring.row, spring.col), spring.data)
+        return jac, self.interp_t @ slope
+
+    def force(self, w, delta):
+        """P̄ = ∫ p̄ r dr = P/(2πRΔγ); negative = tensile."""
+        return float(self.weights @ traction(self.gap(w, delta)))
+
+    def contact(self, w, delta):
+        """(Ā, ā_c): area π Σ(r_out² − r_in²) where h < 1 (compressive), and its outer radius.
+
+        Between nodes w is taken linear and the profile exact (r²/2 for Derjaguin), so the edge is
+        the root of a quadratic, not a node position.
+        """
+        h = delta + self.node_profile - w
+        inside = h < 1.0
+        if not inside.any():
+            return 0.0, 0.0
+        edges = np.nonzero(np.diff(inside.astype(int)))[0]
+        crossings = [self._crossing(w, delta, i) for i in edges]
+        bounds = ([0.0] if inside[0] else []) + crossings
+        if len(bounds) % 2:
+            bounds.append(self.r_nodes[-1])
+        r = np.asarray(bounds)
+        return float(np.pi * np.sum(r[1::2] ** 2 - r[0::2] ** 2)), float(r[-1])
+
+    def _crossing(self, w, delta, i):
+        """Radius in [r_i, r_i+1] where the gap is 1, with w linear between the two nodes.
+
+        Derjaguin profile: the root of δ + r²/2 − w_lin(r) = 1 (exact parabola); exact sphere:
+        linear interpolation of the nodal gaps.
+        """
+        r0, r1 = self.r_nodes[i], self.r_nodes[i + 1]
+        if self.derjaguin:
+            slope = (w[i + 1] - w[i]) / (r1 - r0)
+            c = delta - w[i] + slope * r0 - 1.0
+            roots = slope + np.array([-1.0, 1.0]) * np.sqrt(max(slope**2 - 2.0 * c, 0.0))
+            inside = roots[(roots >= r0 - 1e-12) & (roots <= r1 + 1e-12)]
+            if inside.size:
+                return float(inside[0])
+        h0 = delta + self.node_profile[i] - w[i] - 1.0
+        h1 = delta + self.node_profile[i + 1] - w[i + 1] - 1.0
+        return float(r0 + (r1 - r0) * h0 / (h0 - h1))
+
+    def centre_gap(self, w, delta):
+        """x̄o = h(0) = δ − w(0), in ε."""
+        return float(delta - w[0])
