@@ -2,7 +2,8 @@
 
 import sys
 
-from ._cli import Parser, dump_json, print_table, run
+from ._cli import Parser, ProgressBar, dump_json, print_table, run
+from .accuracy import PRESETS
 from .laws import PAPER_LAWS
 from .scales import Scales, effective_modulus
 
@@ -39,6 +40,21 @@ def build_parser():
     scales.add_argument("--nu2", type=float, help="Poisson's ratio of body 2")
     _physical_arguments(scales)
     scales.add_argument("--json", action="store_true", help="print JSON instead of a table")
+
+    curve = commands.add_parser("curve", help="FE approach + retraction: events and curves")
+    curve.add_argument("--mu", type=float, required=True, help="Tabor parameter (substrate E*)")
+    curve.add_argument("--accuracy", choices=tuple(PRESETS), default="default",
+                       help="mesh and step resolution (default: %(default)s)")
+    curve.add_argument("--layer-thickness", type=float,
+                       help="layer thickness t / sqrt(R eps) (omit: homogeneous half-space)")
+    curve.add_argument("--layer-modulus-ratio", type=float, default=1.0,
+                       help="E*_layer / E*_substrate (default: 1)")
+    curve.add_argument("--nu", type=float, default=0.3, help="substrate Poisson's ratio (0.3)")
+    curve.add_argument("--layer-nu", type=float, help="layer Poisson's ratio (default: --nu)")
+    curve.add_argument("--no-error-estimate", action="store_true",
+                       help="skip the second, coarser mesh (about a third faster)")
+    curve.add_argument("--out", help="folder for curve CSVs, curve.png, result.json, VTU/PNG fields")
+    curve.add_argument("--json", action="store_true", help="print JSON instead of a table")
     return parser
 
 
@@ -78,11 +94,42 @@ def _scales(args, parser):
                     ("quantity", "value", "unit"))
 
 
+def _curve(args, parser):
+    from .asperity import solve_curve
+    from .continuation import ContinuationError
+    from .elastic import Solid
+    from .output import write_all
+
+    if args.layer_thickness is None and (args.layer_modulus_ratio != 1.0 or args.layer_nu):
+        parser.error("curve: --layer-modulus-ratio and --layer-nu need --layer-thickness")
+    solid = Solid(nu=args.nu, layer_thickness=args.layer_thickness,
+                  layer_modulus_ratio=args.layer_modulus_ratio,
+                  layer_nu=args.nu if args.layer_nu is None else args.layer_nu)
+    bar = ProgressBar(f"FE curve mu={args.mu:g}")
+    try:
+        result = solve_curve(args.mu, accuracy=args.accuracy, solid=solid,
+                             error_estimate=not args.no_error_estimate, progress=bar)
+    except ContinuationError as exc:
+        print(f"{PROG}: continuation failed: {exc}", file=sys.stderr)
+        return 1
+    bar.close()
+    if args.out:
+        write_all(result, args.out)
+    row = result.records()
+    if args.json:
+        dump_json(row)
+    else:
+        flat = {k: v for k, v in row.items() if k != "error_estimate"}
+        errors = row["error_estimate"] or {}
+        print_table([{"quantity": k, "value": v, "error_estimate": errors.get(k)}
+                     for k, v in flat.items()], ("quantity", "value", "error_estimate"))
+    return 0
+
+
 def main(argv=None):
     parser = build_parser()
     args = parser.parse_args(argv)
-    {"laws": _laws, "scales": _scales}[args.command](args, parser)
-    return 0
+    return {"laws": _laws, "scales": _scales, "curve": _curve}[args.command](args, parser) or 0
 
 
 if __name__ == "__main__":

@@ -61,3 +61,31 @@ def print_table(rows, columns):
     print("  ".join(c.rjust(w) for c, w in zip(columns, widths)))
     for r in cells:
         print("  ".join(v.rjust(w) for v, w in zip(r, widths)))
+
+
+class ProgressBar:
+    """A one-line progress bar on stderr: `label [#####.....] 50%`, redrawn in place on a
+    terminal, printed every 10% otherwise (logs stay short)."""
+
+    def __init__(self, label, width=30, stream=None):
+        self.label, self.width = label, width
+        self.stream = stream or sys.stderr
+        self.tty = self.stream.isatty()
+        self.shown = -1
+
+    def __call__(self, fraction):
+        percent = int(100 * min(max(fraction, 0.0), 1.0))
+        step = 1 if self.tty else 10
+        if percent // step == self.shown // step:
+            return
+        self.shown = percent
+        filled = self.width * percent // 100
+        bar = f"{self.label} [{'#' * filled}{'.' * (self.width - filled)}] {percent:3d}%"
+        self.stream.write(("\r" + bar) if self.tty else bar + "\n")
+        self.stream.flush()
+
+    def close(self):
+        """Finish the bar at 100% (and end the line on a terminal)."""
+        self(1.0)
+        if self.tty:
+            self.stream.write("\n")

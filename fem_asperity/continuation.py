@@ -1,9 +1,11 @@
 """Pseudo-arc-length continuation of the surface problem: the whole equilibrium curve, both branches.
 
-The curve is traced in the plane of the centre gap x̄o = δ − w(0) and the sphere position δ̄o:
-the constraint t_x(x − x_k) + t_δ(δ − δ_k) = Δs fixes each new point at arc length Δs from the last
-one along the previous tangent (t_x, t_δ). The bordered Jacobian stays regular at the folds of δ̄o
-(jump-in, jump-out), so the unstable branch between them is traced like any other point.
+The curve is traced in the space of three observables, the centre gap x̄o = δ − w(0), the sphere
+position δ̄o and the force P̄: each new point satisfies t·(o − o_k) = Δs, with o = (x̄o, δ̄o, P̄),
+o_k the last point and t the last unit tangent in that space. The bordered Jacobian stays regular
+at the folds of δ̄o (jump-in, jump-out), so the unstable branch between them is traced like any
+other part; including P̄ keeps the steps honest where x̄o and δ̄o hardly move while the contact
+neck shrinks (large μ, before jump-out).
 """
 
 from dataclasses import dataclass, field
@@ -21,22 +23,21 @@ class ContinuationError(RuntimeError):
 
 @dataclass(frozen=True)
 class TraceSettings:
-    """Step control of the continuation (all lengths in ε, forces in 2πRΔγ, radii in √(Rε)).
+    """Step control of the continuation (lengths in ε, forces in 2πRΔγ, radii in √(Rε)).
 
     dp, da: largest change of P̄ and of ā_c between neighbouring points.
-    turn: largest turn between points, in radians, of the tangent in the (x̄o, δ̄o) plane (keeps
-        points dense at the folds) and of the chord in the (δ̄o, P̄) plane (dense at the extremes
-        of P̄); folds and extremes are then located by parabolas through three points.
+    turn: largest turn of the unit tangent in (x̄o, δ̄o, P̄) between points, in radians (keeps
+        points dense at folds and extremes, which are then located by parabolas through three).
     x_start: centre gap of the first point (the force there is ≈ −(4/3) x_start⁻²).
     p_end: the approach ends once the force is this compressive.
     tol: Newton tolerance on the increment (ε) and the relative residual.
-    max_newton, target_newton: Newton iterations allowed per point, and the count the step
-        size aims at (steps needing more are accepted but the next step is shorter).
+    max_newton, target_newton: Newton iterations allowed per point, and the count above which
+        the next step is shortened.
     """
 
     dp: float = 0.05
     da: float = 0.1
-    turn: float = 0.05
+    turn: float = 0.1
     ds_max: float = 2.0
     ds_min: float = 1e-7
     x_start: float = 40.0
@@ -45,6 +46,15 @@ class TraceSettings:
     max_newton: int = 10
     target_newton: int = 4
     max_points: int = 20000
+
+
+def is_positive_definite(matrix):
+    """True if the symmetric `matrix` has a Cholesky factor (stable equilibrium under fixed δ)."""
+    try:
+        cho_factor(matrix, check_finite=False)
+    except LinAlgError:
+        return False
+    return True
 
 
 @dataclass
@@ -72,47 +82,41 @@ class Trace:
         self.states.append(w.copy())
 
 
-def is_positive_definite(matrix):
-    """True if the symmetric `matrix` has a Cholesky factor (stable equilibrium under fixed δ)."""
-    try:
-        cho_factor(matrix, check_finite=False)
-    except LinAlgError:
-        return False
-    return True
+def _observables(surface, w, delta):
+    return np.array([surface.centre_gap(w, delta), delta, surface.force(w, delta)])
 
 
 def _bordered(surface, w, delta, direction):
-    """(∂g/∂w, LU of [[∂g/∂w, ∂g/∂δ], [constraint row along `direction`]]) at (w, δ)."""
-    jac, g_delta = surface.tangent(w, delta)
+    """(∂g/∂w, LU of the bordered matrix, Jacobian of the observables) at (w, δ).
+
+    Bordered matrix: [[∂g/∂w, ∂g/∂δ], [direction · ∂o/∂(w, δ)]]."""
+    jac, g_delta, p_delta = surface.tangent(w, delta)
     n = g_delta.size
+    gradients = np.zeros((3, n + 1))
+    gradients[0, 0], gradients[0, n] = -1.0, 1.0  # x = δ − w0
+    gradients[1, n] = 1.0
+    gradients[2, :n], gradients[2, n] = -g_delta / surface.load_factor, p_delta
     matrix = np.empty((n + 1, n + 1))
     matrix[:n, :n] = jac
     matrix[:n, n] = g_delta
-    matrix[n, :] = 0.0
-    matrix[n, 0] = -direction[0]  # x = δ − w0
-    matrix[n, n] = direction[0] + direction[1]
-    return jac, lu_factor(matrix, check_finite=False)
+    matrix[n] = direction @ gradients
+    return jac, lu_factor(matrix, check_finite=False), gradients
 
 
-def _constraint(surface, w, delta, direction, anchor, ds):
-    x = surface.centre_gap(w, delta)
-    return direction[0] * (x - anchor[0]) + direction[1] * (delta - anchor[1]) - ds
-
-
-def correct(surface, w, delta, direction, anchor, ds, *, factor=None, tol=1e-9, max_newton=12):
+def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10):
     """Newton with a gap-preserving, residual-decreasing line search on the bordered system.
 
-    Solves g(w, δ) = 0 with direction·((x, δ) − anchor) = ds. A given LU `factor` of the bordered
-    matrix (same `direction`) is reused while it makes the residual fall at least twofold per
-    iteration (chord steps); otherwise the matrix is refactored at the current iterate.
-    Returns (w, δ, iterations) or None if it does not converge.
+    Solves g(w, δ) = 0 with direction·(o(w, δ) − anchor) = ds for the observables
+    o = (x̄o, δ̄o, P̄). The matrix is refactored at every iterate: chord steps with an old matrix
+    overshoot into the repulsive wall where the contact front has moved.
+    Returns (w, δ, iterations) or None.
     """
-    w, delta, lu = w.copy(), float(delta), factor
+    w, delta = w.copy(), float(delta)
+    scale = None
     for iteration in range(1, max_newton + 1):
         g = surface.residual(w, delta)
-        c = _constraint(surface, w, delta, direction, anchor, ds)
-        if lu is None:
-            lu = _bordered(surface, w, delta, direction)[1]
+        c = direction @ (_observables(surface, w, delta) - anchor) - ds
+        lu = _bordered(surface, w, delta, direction)[1]
         step = lu_solve(lu, -np.append(g, c), check_finite=False)
         dw, dd = step[:-1], step[-1]
         h = surface.gap(w, delta)
@@ -121,18 +125,17 @@ def correct(surface, w, delta, direction, anchor, ds, *, factor=None, tol=1e-9, 
         alpha = 1.0
         if shrinking.any():
             alpha = min(1.0, float(np.min((_GAP_KEEP - 1.0) * h[shrinking] / dh[shrinking])))
-        scale = 1.0 + np.max(np.abs(surface.stiffness @ w))
+        if scale is None:
+            scale = 1.0 + np.max(np.abs(surface.stiffness @ w))
         merit = np.linalg.norm(g) / scale + abs(c)
         for _ in range(20):
             w_try, d_try = w + alpha * dw, delta + alpha * dd
             g_try = surface.residual(w_try, d_try)
-            c_try = _constraint(surface, w_try, d_try, direction, anchor, ds)
+            c_try = direction @ (_observables(surface, w_try, d_try) - anchor) - ds
             merit_try = np.linalg.norm(g_try) / scale + abs(c_try)
             if merit_try <= (1.0 - 1e-4 * alpha) * merit:
                 break
             alpha *= 0.5
-        if merit_try > 0.1 * merit:
-            lu = None
         w, delta = w_try, d_try
         increment = alpha * max(np.max(np.abs(dw)), abs(dd))
         if increment <= tol * (1.0 + np.max(np.abs(w))) and np.max(np.abs(g_try)) <= tol * scale:
@@ -140,25 +143,19 @@ def correct(surface, w, delta, direction, anchor, ds, *, factor=None, tol=1e-9, 
     return None
 
 
-def _tangent(lu, n):
-    """Unit tangent (dw/ds, dδ/ds, planar (dx/ds, dδ/ds)) in the (x̄o, δ̄o) metric, oriented
-    along the constraint row of the bordered factor `lu` (so the trace keeps its direction)."""
+def _tangent(lu, gradients):
+    """Unit tangent: (dw/ds, dδ/ds, do/ds) with |do/ds| = 1, oriented along the constraint row."""
+    n = gradients.shape[1] - 1
     rhs = np.zeros(n + 1)
     rhs[n] = 1.0
     tau = lu_solve(lu, rhs, check_finite=False)
-    planar = np.array([tau[n] - tau[0], tau[n]])
-    norm = np.hypot(*planar)
-    return tau[:n] / norm, tau[n] / norm, planar / norm
-
-
-def _angle(a, b):
-    """Angle between two plane vectors, in radians (0 if either is zero)."""
-    norm = np.hypot(*a) * np.hypot(*b)
-    return float(np.arccos(np.clip(a @ b / norm, -1.0, 1.0))) if norm > 0.0 else 0.0
+    observed = gradients @ tau
+    norm = np.linalg.norm(observed)
+    return tau[:n] / norm, tau[n] / norm, observed / norm
 
 
 def trace(surface, settings=TraceSettings(), progress=None):
-    """Trace the equilibrium curve from x̄o = x_start (δ decreasing) until P̄ ≥ p_end.
+    """Trace the equilibrium curve from x̄o = x_start (δ decreasing) until P̄ ≥ p_end, stable.
 
     `progress(fraction)` is called after each accepted point. Raises ContinuationError if the
     step falls below ds_min or the point budget runs out.
@@ -166,39 +163,37 @@ def trace(surface, settings=TraceSettings(), progress=None):
     s = settings
     result = Trace()
     n = surface.r_nodes.size
-    gap_control = np.array([1.0, 0.0])
-    start = correct(surface, np.zeros(n), s.x_start, gap_control, (s.x_start, 0.0), 0.0, tol=s.tol)
+    gap_control = np.array([1.0, 0.0, 0.0])
+    start = correct(surface, np.zeros(n), s.x_start, gap_control, np.array([s.x_start, 0, 0]),
+                    0.0, tol=s.tol)
     if start is None:
         raise ContinuationError(f"no equilibrium found at the start x = {s.x_start}")
     w, delta, its = start
     result.newton_iterations += its
-    direction = np.array([-1.0, -1.0]) / np.sqrt(2.0)
-    jac, lu = _bordered(surface, w, delta, direction)
+    row = np.array([-1.0, -1.0, 0.0]) / np.sqrt(2.0)
+    jac, lu, gradients = _bordered(surface, w, delta, row)
     result.append(surface, w, delta, jac)
-    tangent = _tangent(lu, n)
-    previous_chord = np.array([-1.0, 0.0])
+    tangent = _tangent(lu, gradients)
     ds = 0.1
     log_span = np.log(s.x_start / 0.8)
     while result.p[-1] < s.p_end or not result.stable[-1]:
         if len(result.delta) >= s.max_points:
             raise ContinuationError(f"point budget of {s.max_points} exhausted at δ = {delta:.6g}")
-        dw, dd, planar = tangent
-        anchor = (result.x[-1], delta)
-        step = correct(surface, w + ds * dw, delta + ds * dd, direction, anchor,
-                       ds * (direction @ planar), factor=lu, tol=s.tol, max_newton=s.max_newton)
+        dw, dd, t = tangent
+        anchor = np.array([result.x[-1], delta, result.p[-1]])
+        step = correct(surface, w + ds * dw, delta + ds * dd, row, anchor, ds * (row @ t),
+                       tol=s.tol, max_newton=s.max_newton)
         if step is not None:
             w_new, d_new, its = step
             result.newton_iterations += its
-            area, radius = surface.contact(w_new, d_new)
-            chord = np.array([d_new - delta, surface.force(w_new, d_new) - result.p[-1]])
-            da = abs(radius - result.a_c[-1])
-            jac_new, lu_new = _bordered(surface, w_new, d_new, planar)
-            tangent_new = _tangent(lu_new, n)
-            turn = max(_angle(tangent_new[2], planar), _angle(chord, previous_chord))
-            ratio = max(abs(chord[1]) / s.dp, da / s.da, turn / s.turn, 1e-3)
+            jac_new, lu_new, gradients_new = _bordered(surface, w_new, d_new, t)
+            tangent_new = _tangent(lu_new, gradients_new)
+            turn = np.arccos(np.clip(tangent_new[2] @ t, -1.0, 1.0))
+            dp = abs(surface.force(w_new, d_new) - result.p[-1])
+            da = abs(surface.contact(w_new, d_new)[1] - result.a_c[-1])
+            ratio = max(dp / s.dp, da / s.da, turn / s.turn, 1e-3)
             if ratio <= 1.0 or ds <= s.ds_min:
-                w, delta, direction, lu, tangent = w_new, d_new, planar, lu_new, tangent_new
-                previous_chord = chord
+                w, delta, row, tangent = w_new, d_new, t, tangent_new
                 result.append(surface, w, delta, jac_new)
                 if progress is not None:
                     progress(min(1.0, np.log(s.x_start / max(result.x[-1], 1e-3)) / log_span))

@@ -21,8 +21,20 @@ def traction(h, *, dgamma=1.0, eps=1.0):
     with dgamma in J/m² and eps, h in m, p comes in Pa. Requires h > 0.
     """
     dgamma, eps = positive("dgamma", dgamma), positive("eps", eps)
-    s = eps / positive("h", h)
-    return 8.0 * dgamma / (3.0 * eps) * (s**9 - s**3)
+    return dgamma / eps * scaled_traction(positive("h", h) / eps)
+
+
+def scaled_traction(h):
+    """p̄(h̄) = (8/3)(h̄⁻⁹ − h̄⁻³) in Δγ/ε for a gap h̄ in ε, unchecked (inner loops; h̄ > 0)."""
+    s3 = h**-3.0
+    return 8.0 / 3.0 * (s3 * s3 * s3 - s3)
+
+
+def scaled_traction_slope(h):
+    """dp̄/dh̄ = (8/3)(−9h̄⁻¹⁰ + 3h̄⁻⁴) in Δγ/ε², unchecked (inner loops; h̄ > 0)."""
+    s = 1.0 / h
+    s4 = s**4
+    return 8.0 * (s4 - 3.0 * s4 * s4 * s * s)
 
 
 def traction_slope(h, *, dgamma=1.0, eps=1.0):
@@ -31,8 +43,7 @@ def traction_slope(h, *, dgamma=1.0, eps=1.0):
     Units as in `traction`, divided by the unit of h (Δγ/ε² by default, Pa/m in SI).
     """
     dgamma, eps = positive("dgamma", dgamma), positive("eps", eps)
-    s = eps / positive("h", h)
-    return 8.0 * dgamma / (3.0 * eps**2) * (-9.0 * s**10 + 3.0 * s**4)
+    return dgamma / eps**2 * scaled_traction_slope(positive("h", h) / eps)
 
 
 def bradley_force(delta):

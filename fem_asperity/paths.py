@@ -50,7 +50,8 @@ def _landing(surface, trace, curve, order, start, delta):
             continue
         t = da / (da - db) if da != db else 0.0
         guess = (1.0 - t) * trace.states[a] + t * trace.states[b]
-        solved = correct(surface, guess, delta, np.array([0.0, 1.0]), (0.0, delta), 0.0)
+        solved = correct(surface, guess, delta, np.array([0.0, 1.0, 0.0]),
+                         np.array([0.0, delta, 0.0]), 0.0)
         if solved is None:
             raise ContinuationError(f"the landing at δ = {delta:.6g} did not converge")
         w, d, _ = solved

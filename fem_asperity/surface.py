@@ -9,7 +9,8 @@ h = δ + r²/2 − N w the Derjaguin gap (or the exact sphere profile, see `gap_
 import numpy as np
 from scipy.linalg import cho_factor, cho_solve
 
-from .lj import traction, traction_slope
+from .lj import scaled_traction as traction
+from .lj import scaled_traction_slope as traction_slope
 
 
 def derjaguin_profile(r, radius_ratio=None):
@@ -52,12 +53,13 @@ class LJSurface:
         return self.stiffness @ w + self.load_factor * (self.interp_t @ (self.weights * traction(h)))
 
     def tangent(self, w, delta):
-        """(∂g/∂w, ∂g/∂δ): the symmetric surface tangent and the load sensitivity to δ."""
-        slope = self.load_factor * self.weights * traction_slope(self.gap(w, delta))
+        """(∂g/∂w, ∂g/∂δ, ∂P̄/∂δ): the symmetric surface tangent, the load sensitivity to δ and
+        the force sensitivity to δ (∂P̄/∂w = −(∂g/∂δ)/μ^(3/2))."""
+        slope = self.weights * traction_slope(self.gap(w, delta))
         spring = (self.interp_t @ self.interp.multiply(slope[:, None])).tocoo()
         jac = self.stiffness.copy()
-        np.subtract.at(jac, (spring.row, spring.col), spring.data)
-        return jac, self.interp_t @ slope
+        np.subtract.at(jac, (spring.row, spring.col), self.load_factor * spring.data)
+        return jac, self.load_factor * (self.interp_t @ slope), float(slope.sum())
 
     def force(self, w, delta):
         """P̄ = ∫ p̄ r dr = P/(2πRΔγ); negative = tensile."""

@@ -9,7 +9,7 @@ from fem_asperity import InputError
 from fem_asperity._cli import Parser, dump_json, run
 from fem_asperity.laws import PAPER_LAWS
 
-from ._io import save_figure, write_atomic
+from fem_asperity._io import save_figure, write_atomic
 from .closed_forms import closed_form_checks
 from .law_figure import law_table, plot_laws
 from .report import PENDING, render

@@ -1,5 +1,6 @@
 """Atomic file output: write to a temporary file beside the target, then rename over it."""
 
+import contextlib
 import os
 import tempfile
 from pathlib import Path
@@ -11,20 +12,29 @@ def _umask():
     return mask
 
 
-def write_atomic(path, data):
-    """Write `data` (str or bytes) to `path` so that readers see the old file or the whole new one."""
+@contextlib.contextmanager
+def atomic_path(path):
+    """Yield a temporary path beside `path` (same suffix) for a writer that needs a file name;
+    on success it is renamed over `path`, on failure removed."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem}.", suffix=path.suffix)
+    os.close(fd)
     try:
         os.chmod(tmp, 0o666 & ~_umask())
-        with os.fdopen(fd, "wb") as f:
-            f.write(data.encode() if isinstance(data, str) else data)
+        yield tmp
         os.replace(tmp, path)
     except BaseException:
-        os.unlink(tmp)
+        if os.path.exists(tmp):
+            os.unlink(tmp)
         raise
-    return path
+
+
+def write_atomic(path, data):
+    """Write `data` (str or bytes) to `path` so that readers see the old file or the whole new one."""
+    with atomic_path(path) as tmp, open(tmp, "wb") as f:
+        f.write(data.encode() if isinstance(data, str) else data)
+    return Path(path)
 
 
 def save_figure(fig, path, dpi=150):

@@ -1,0 +1,122 @@
+"""Files of one FE curve: CSV curves, a force/contact figure, and VTU + PNG fields at chosen states.
+
+Field units: coordinates r, z in √(Rε); displacement in ε; σ_zz in Δγ/ε (the LJ traction unit,
+so σ_zz ≈ −p̄ on the surface). Every file is written atomically.
+"""
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from ._io import atomic_path, save_figure, write_atomic
+from .lj import traction
+
+
+def write_curves(result, folder):
+    """approach.csv, retraction.csv, equilibrium.csv and result.json under `folder`."""
+    folder = Path(folder)
+    paths = [write_atomic(folder / f"{name}.csv", getattr(result, name).csv())
+             for name in ("approach", "retraction", "equilibrium")]
+    text = json.dumps(result.records(), indent=2, allow_nan=False)
+    return paths + [write_atomic(folder / "result.json", text + "\n")]
+
+
+def plot_curve(result, path):
+    """Two panels, P̄ and ā_c vs δ̄o: equilibrium curve (unstable dashed), approach, retraction."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4), constrained_layout=True)
+    eq = result.equilibrium
+    for ax, column, label in zip(axes, ("p", "a_c"), ("P̄ = P/(2πRΔγ)", "ā_c = a_c/√(εR)")):
+        values = getattr(eq, column)
+        ax.plot(eq.delta, np.where(eq.stable, np.nan, values), "k--", lw=1, label="unstable")
+        ax.plot(result.approach.delta, getattr(result.approach, column), "-", color="tab:blue",
+                lw=1.5, label="approach")
+        ax.plot(result.retraction.delta, getattr(result.retraction, column), "-",
+                color="tab:red", lw=1, label="retraction")
+        ax.set_xlabel("δ̄o = δo/ε")
+        ax.set_ylabel(label)
+        ax.set_xlim(min(eq.delta), min(max(eq.delta), 10.0))
+        ax.grid(alpha=0.3)
+    axes[0].set_ylim(-1.1, max(0.2, min(1.2, float(np.max(eq.p)))))
+    axes[0].legend()
+    fig.suptitle(f"FE, μ = {result.mu:g}, accuracy '{result.accuracy}'")
+    return save_figure(fig, path)
+
+
+def _state_index(curve, delta, p):
+    """Index of the equilibrium-curve point nearest to (δ̄o, P̄)."""
+    return int(np.argmin(np.hypot(curve.delta - delta, curve.p - p)))
+
+
+def state_fields(result, index):
+    """(mesh, nodal displacement (n_vertices × 2, in ε), σ_zz per element (Δγ/ε)) at curve point
+    `index` of `result.equilibrium`."""
+    model = result.model
+    surface, half_space = model.surface, model.half_space
+    w, delta = model.trace.states[index], result.equilibrium.delta[index]
+    pressure = surface.load_factor * traction(surface.gap(w, delta))
+    u = half_space.displacement_field(half_space.nodal_load(pressure))
+    nodal = u[half_space.basis.nodal_dofs].T
+    return half_space.mesh, nodal, half_space.stress_zz(u) / surface.load_factor
+
+
+def write_fields(result, folder, label, index):
+    """fields_<label>.vtu (meshio) and fields_<label>.png (pyvista, off-screen) at curve point
+    `index`: deformed surface region near the contact coloured by σ_zz."""
+    import meshio
+
+    mesh, nodal, sigma = state_fields(result, index)
+    points = np.column_stack([mesh.p.T, np.zeros(mesh.p.shape[1])])
+    u3 = np.column_stack([nodal, np.zeros(len(nodal))])
+    grid = meshio.Mesh(points, [("triangle", mesh.t.T)], point_data={"u": u3},
+                       cell_data={"sigma_zz": [sigma]})
+    folder = Path(folder)
+    vtu = folder / f"fields_{label}.vtu"
+    with atomic_path(vtu) as tmp:
+        meshio.write(tmp, grid, file_format="vtu")
+    eq = result.equilibrium
+    title = f"mu = {result.mu:g}, delta_o = {eq.delta[index]:.4g} eps, P = {eq.p[index]:.4g}"
+    png = _render(points, mesh.t, u3, sigma, folder / f"fields_{label}.png", title,
+                  window=max(1.5, 2.5 * float(eq.a_c[index])))
+    return [vtu, png]
+
+
+def _render(points, triangles, u3, sigma, path, title, window):
+    import pyvista as pv
+    from vtkmodules.vtkCommonCore import vtkLogger
+
+    vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_OFF)
+    cells = np.column_stack([np.full(triangles.shape[1], 3), triangles.T]).ravel()
+    grid = pv.UnstructuredGrid(cells, np.full(triangles.shape[1], pv.CellType.TRIANGLE), points)
+    grid.cell_data["sigma_zz [dgamma/eps]"] = sigma
+    shown = float(np.max(np.abs(u3[:, 1]))) or 1.0
+    grid.point_data["u"] = u3 * (0.05 * window / shown)
+    near = grid.clip_box([0.0, window, -window, 0.0, -1.0, 1.0], invert=False).warp_by_vector("u")
+    limit = float(np.max(np.abs(near.cell_data["sigma_zz [dgamma/eps]"]))) or 1.0
+    plotter = pv.Plotter(off_screen=True, window_size=(1000, 600))
+    bar = dict(vertical=True, position_x=0.86, position_y=0.15, height=0.7, width=0.05,
+               title="sigma_zz / (dgamma/eps)")
+    plotter.add_mesh(near, scalars="sigma_zz [dgamma/eps]", cmap="RdBu_r", clim=(-limit, limit),
+                     scalar_bar_args=bar)
+    plotter.add_text(title + f"  (displacement x {0.05 * window / shown:.3g})", font_size=10)
+    plotter.view_xy()
+    plotter.show_bounds(xtitle="r / sqrt(R eps)", ytitle="z / sqrt(R eps)", location="outer")
+    with atomic_path(path) as tmp:
+        plotter.screenshot(tmp)
+    plotter.close()
+    return Path(path)
+
+
+def write_all(result, folder):
+    """Curves, the curve figure and the fields at P̄max (approach) and P̄off (retraction)."""
+    folder = Path(folder)
+    paths = write_curves(result, folder) + [plot_curve(result, folder / "curve.png")]
+    ev, eq = result.events, result.equilibrium
+    for label, delta, p in (("p_max", ev.delta_oc, ev.p_max), ("p_off", ev.delta_off, ev.p_off)):
+        paths += write_fields(result, folder, label, _state_index(eq, delta, p))
+    return paths
