@@ -68,7 +68,7 @@ class Solid:
 def _strain(u, r):
     """Axisymmetric strains (ε_rr, ε_zz, ε_θθ, γ_rz) of a vector field (u_r, u_z)."""
     grad = u.grad
-    return grad[0, 0], grad[1, 1], u.value[0] / r, grad[0, 1] + grad[1, 0]
+    return grad[0, 0], grad[1, 1], u[0] / r, grad[0, 1] + grad[1, 0]
 
 
 @BilinearForm
@@ -120,7 +120,7 @@ class HalfSpace:
         nf, nq = fb.dx.shape
         rows = np.arange(nf * nq).reshape(nf, nq)
         entries = [
-            (rows, np.broadcast_to(fb.element_dofs[j][:, None], (nf, nq)), phi[0].value[1])
+            (rows, np.broadcast_to(fb.element_dofs[j][:, None], (nf, nq)), np.asarray(phi[0])[1])
             for j, phi in enumerate(fb.basis)
         ]
         row, col, val = (np.concatenate([e[k].ravel() for e in entries]) for k in range(3))
@@ -130,8 +130,8 @@ class HalfSpace:
         self.surface_dofs = surface[order]
         self.r_nodes = self.basis.doflocs[0, self.surface_dofs]
         self.interp = full[:, self.surface_dofs].tocsr()
-        self.r_quad = fb.global_coordinates().value[0].ravel()
-        self.weights = (fb.dx * fb.global_coordinates().value[0]).ravel()
+        self.r_quad = np.asarray(fb.global_coordinates())[0].ravel()
+        self.weights = (fb.dx * np.asarray(fb.global_coordinates())[0]).ravel()
 
     def _condense(self):
         """C = (K⁻¹)_ss over the surface normal DOFs: one factorisation, n_s back-substitutions."""
@@ -164,7 +164,7 @@ class HalfSpace:
     def stress_zz(self, u):
         """σ_zz per element (mean over its quadrature points), E* = 1 units."""
         field = self.basis.interpolate(u)
-        r = self.basis.global_coordinates().value[0]
+        r = np.asarray(self.basis.global_coordinates())[0]
         e_rr, e_zz, e_tt, _ = _strain(field, r)
         sigma = self._lam * (e_rr + e_zz + e_tt) + 2.0 * self._shear * e_zz
         return sigma.mean(axis=1)

@@ -85,3 +85,41 @@ def test_validation_all_refuses_a_file_as_output_folder(tmp_path):
     done = cli("validation", "all", "--out", str(target))
     assert done.returncode == 2 and len(done.stderr.strip().splitlines()) == 1
     assert target.read_text() == "keep me"
+
+
+CURVE_KEYS = {"mu", "method", "accuracy", "p_max", "delta_oc", "delta_o_star", "a_c", "jump_in",
+              "x_oc", "delta_jump_in", "p_jump_after", "p_off", "delta_jump_out",
+              "error_estimate", "dofs", "newton_iterations", "wall_s"}
+
+
+def test_curve_json_files_and_progress(tmp_path):
+    out = tmp_path / "curve"
+    done = cli("fem_asperity", "curve", "--mu", "1.5", "--accuracy", "draft", "--json",
+               "--out", str(out))
+    assert done.returncode == 0, done.stderr
+    events = json.loads(done.stdout)
+    assert CURVE_KEYS <= set(events)
+    assert events["jump_in"] is True and events["x_oc"] > 1.0
+    assert events["delta_jump_out"] > events["delta_jump_in"]
+    assert "100%" in done.stderr
+    names = {p.name for p in out.iterdir()}
+    assert {"approach.csv", "retraction.csv", "equilibrium.csv", "result.json", "curve.png",
+            "fields_p_max.vtu", "fields_p_max.png", "fields_p_off.vtu"} <= names
+    assert not [n for n in names if n.startswith(".")]  # no temporary files left
+    header = (out / "approach.csv").read_text().splitlines()[0]
+    assert header == "delta_o,x_o,p,area,a_c,stable,branch"
+    import meshio
+
+    fields = meshio.read(out / "fields_p_max.vtu")
+    assert fields.point_data["u"].shape[1] == 3 and "sigma_zz" in fields.cell_data
+
+
+@pytest.mark.parametrize("args", [
+    ["curve"], ["curve", "--mu", "0"], ["curve", "--mu", "1", "--accuracy", "best"],
+    ["curve", "--mu", "1", "--layer-modulus-ratio", "2"],
+    ["curve", "--mu", "1", "--layer-thickness", "-1"], ["curve", "--mu", "1", "--nu", "0.5"],
+])
+def test_curve_bad_input_is_one_line_exit_2(args):
+    done = cli("fem_asperity", *args)
+    assert done.returncode == 2
+    assert len(done.stderr.strip().splitlines()) == 1, done.stderr

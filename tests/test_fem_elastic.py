@@ -1,0 +1,99 @@
+"""The condensed axisymmetric half-space against Boussinesq-type closed forms (E* = 1 units)."""
+
+import numpy as np
+import pytest
+
+from fem_asperity import InputError
+from fem_asperity.elastic import HalfSpace, Solid
+from fem_asperity.mesh import graded_mesh
+
+
+def _model(order=2, grading=0.5, layer=None, solid=Solid()):
+    mesh = graded_mesh(h_surface=0.1, r_fine=2.0, size=1e4, grading=grading, layer_thickness=layer)
+    return HalfSpace(mesh, order=order, solid=solid)
+
+
+@pytest.fixture(scope="module")
+def p2():
+    return _model()
+
+
+def _hertz_error(model):
+    """Max |w + (1 − r²/2)| inside r < 0.9 under the Hertz pressure of a = R = 1 (δ = 1)."""
+    r = model.r_quad
+    pressure = np.where(r < 1.0, 2.0 / np.pi * np.sqrt(np.clip(1.0 - r**2, 0.0, None)), 0.0)
+    w = model.deflection(pressure)
+    inside = model.r_nodes < 0.9
+    return np.max(np.abs(-w[inside] - (1.0 - 0.5 * model.r_nodes[inside] ** 2)))
+
+
+def test_hertz_pressure_gives_hertz_displacement(p2):
+    assert _hertz_error(p2) < 0.01 * 0.1  # 1% of δ = 1 asked; P2 gives 0.03%
+
+
+def test_p1_hertz_within_one_percent():
+    assert _hertz_error(_model(order=1, grading=0.2)) < 0.01
+
+
+def test_uniform_disc_centre_deflection(p2):
+    w = p2.deflection((p2.r_quad < 1.0).astype(float))
+    assert p2.r_nodes[0] == 0.0
+    assert -w[0] == pytest.approx(2.0, rel=0.01)  # 2 p a / E*
+
+
+def test_force_weights_integrate_r():
+    model = _model(order=1, grading=0.3)
+    # ∫0^1 r dr = 1/2 exactly with the surface quadrature
+    assert model.weights @ (model.r_quad < 1.0) == pytest.approx(0.5, rel=1e-12)
+
+
+def test_layer_with_substrate_properties_is_the_half_space():
+    layered = _model(layer=0.7, solid=Solid(layer_thickness=0.7))
+    plain_same_mesh = _model(layer=0.7)
+    load = (layered.r_quad < 1.0).astype(float)
+    np.testing.assert_array_equal(layered.deflection(load), plain_same_mesh.deflection(load))
+    plain = _model()
+    w_plain = plain.deflection((plain.r_quad < 1.0).astype(float))[0]
+    assert layered.deflection(load)[0] == pytest.approx(w_plain, rel=1e-3)
+
+
+def test_thick_stiff_layer_acts_as_its_own_half_space():
+    solid = Solid(layer_thickness=500.0, layer_modulus_ratio=2.0)
+    model = _model(layer=500.0, solid=solid)
+    w = model.deflection((model.r_quad < 1.0).astype(float))
+    assert -w[0] == pytest.approx(1.0, rel=0.01)  # 2 p a / E*_layer
+
+
+def test_soft_layer_is_more_compliant():
+    stiff, soft = (_model(layer=0.5, solid=Solid(layer_thickness=0.5, layer_modulus_ratio=m))
+                   for m in (4.0, 0.25))
+    load = (stiff.r_quad < 1.0).astype(float)
+    assert -stiff.deflection(load)[0] < 2.0 < -soft.deflection(load)[0]
+
+
+@pytest.mark.parametrize(
+    "kwargs",
+    [dict(nu=0.5), dict(layer_modulus_ratio=2.0), dict(layer_thickness=-1.0),
+     dict(layer_thickness=1.0, layer_modulus_ratio=0.0)],
+)
+def test_solid_rejects_bad_input(kwargs):
+    with pytest.raises(InputError):
+        Solid(**kwargs)
+
+
+def test_mesh_rejects_bad_sizes():
+    with pytest.raises(InputError, match="size"):
+        graded_mesh(h_surface=0.1, r_fine=2.0, size=4.0)
+    with pytest.raises(InputError, match="order"):
+        HalfSpace(graded_mesh(h_surface=0.5, r_fine=2.0, size=100.0), order=3)
+
+
+def test_mesh_is_graded_and_tagged():
+    mesh = graded_mesh(h_surface=0.05, r_fine=1.0, size=1e3, layer_thickness=0.3)
+    facets = mesh.facets[:, mesh.boundaries["top"]]
+    r = mesh.p[0, facets]
+    length = np.abs(r[1] - r[0])
+    assert length[r.max(axis=0) <= 1.0].max() <= 0.05 + 1e-12
+    assert length.max() > 10.0  # coarse far away
+    assert np.isclose(mesh.p[1], -0.3).any()
+    assert mesh.subdomains["layer"].size > 0
