@@ -1,5 +1,6 @@
-"""Single-asperity adhesive contact: inputs and scales, the LJ 9-3 law, reference solutions and
-the paper's closed-form laws (the axisymmetric FE model arrives in a later stage).
+"""Single-asperity adhesive contact: inputs and scales, the LJ 9-3 law, reference solutions,
+the paper's closed-form laws, and the axisymmetric FE model (`fem_asperity.asperity.solve_curve`,
+imported on demand so that the closed forms load without scikit-fem).
 """
 
 from ._checks import DerjaguinWarning, InputError

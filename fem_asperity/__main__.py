@@ -113,6 +113,8 @@ def _curve(args, parser):
         print(f"{PROG}: continuation failed: {exc}", file=sys.stderr)
         return 1
     bar.close()
+    if "ripple" in result.message:
+        print(f"warning: {result.message}", file=sys.stderr)
     if args.out:
         write_all(result, args.out)
     row = result.records()

@@ -43,6 +43,8 @@ class CurveResult:
     approach, retraction: the paths under δ̄o control (jumps as consecutive points at equal δ̄o).
     events: `Events` read off the paths. error_estimate: |event − event on the coarser mesh| per
     key (None where not estimated). dofs, surface_nodes, points, newton_iterations, wall_s: cost.
+    message: how many folds the equilibrium curve has, and a warning when there are more than
+    the two of one jump-in/jump-out (the sign of a surface mesh too coarse for μ).
     """
 
     mu: float
@@ -59,6 +61,7 @@ class CurveResult:
     newton_iterations: int
     wall_s: float
     method: str = "fem"
+    message: str = ""
     model: Model | None = field(default=None, repr=False, compare=False)
 
     def records(self):
@@ -74,6 +77,7 @@ class CurveResult:
             "points": self.points,
             "newton_iterations": self.newton_iterations,
             "wall_s": self.wall_s,
+            "message": self.message,
         }
 
 
@@ -88,6 +92,11 @@ def _solve_once(mu, disc, solid, radius_ratio, progress):
     order = np.arange(len(curve))
     approach, jumps_in = walk(surface, traced, curve, order)
     retraction, jumps_out = walk(surface, traced, curve, order[::-1])
+    folds = int(curve.branch.max())
+    message = f"{folds} folds of the equilibrium curve"
+    if folds > 2:
+        message += (" (more than one jump-in and one jump-out: probably ripple from a surface "
+                    "mesh too coarse for this mu; try a finer accuracy)")
     return CurveResult(
         mu=mu,
         accuracy=disc.name,
@@ -102,6 +111,7 @@ def _solve_once(mu, disc, solid, radius_ratio, progress):
         points=len(curve),
         newton_iterations=traced.newton_iterations,
         wall_s=time.perf_counter() - start,
+        message=message,
         model=Model(half_space, surface, traced),
     )
 

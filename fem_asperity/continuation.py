@@ -11,7 +11,7 @@ neck shrinks (large μ, before jump-out).
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.linalg import LinAlgError, cho_factor, lu_factor, lu_solve
+from scipy.linalg import LinAlgError, cho_factor, cho_solve, lu_factor, lu_solve
 
 #: A Newton step never lets a gap fall below this fraction of its current value.
 _GAP_KEEP = 0.2
@@ -30,7 +30,8 @@ class TraceSettings:
         points dense at folds and extremes, which are then located by parabolas through three).
     x_start: centre gap of the first point (the force there is ≈ −(4/3) x_start⁻²).
     p_end: the approach ends once the force is this compressive.
-    tol: Newton tolerance on the increment (ε) and the relative residual.
+    tol: Newton tolerance on the relative residual; the last increment (ε) must be ≤ √tol, so
+        with quadratic convergence the state is accurate to about tol.
     max_newton, target_newton: Newton iterations allowed per point, and the count above which
         the next step is shortened.
     """
@@ -48,15 +49,6 @@ class TraceSettings:
     max_points: int = 20000
 
 
-def is_positive_definite(matrix):
-    """True if the symmetric `matrix` has a Cholesky factor (stable equilibrium under fixed δ)."""
-    try:
-        cho_factor(matrix, check_finite=False)
-    except LinAlgError:
-        return False
-    return True
-
-
 @dataclass
 class Trace:
     """Raw continuation output, one entry per converged point, ordered along the curve."""
@@ -71,14 +63,14 @@ class Trace:
     newton_iterations: int = 0
     rejected_steps: int = 0
 
-    def append(self, surface, w, delta, jac):
+    def append(self, surface, w, delta, stable):
         area, radius = surface.contact(w, delta)
         self.delta.append(delta)
         self.x.append(surface.centre_gap(w, delta))
         self.p.append(surface.force(w, delta))
         self.area.append(area)
         self.a_c.append(radius)
-        self.stable.append(is_positive_definite(jac))
+        self.stable.append(stable)
         self.states.append(w.copy())
 
 
@@ -86,21 +78,53 @@ def _observables(surface, w, delta):
     return np.array([surface.centre_gap(w, delta), delta, surface.force(w, delta)])
 
 
-def _bordered(surface, w, delta, direction):
-    """(∂g/∂w, LU of the bordered matrix, Jacobian of the observables) at (w, δ).
+class Linearisation:
+    """The bordered Newton matrix [[∂g/∂w, ∂g/∂δ], [row · ∂o/∂(w, δ)]] at (w, δ), factorised.
 
-    Bordered matrix: [[∂g/∂w, ∂g/∂δ], [direction · ∂o/∂(w, δ)]]."""
-    jac, g_delta, p_delta = surface.tangent(w, delta)
-    n = g_delta.size
-    gradients = np.zeros((3, n + 1))
-    gradients[0, 0], gradients[0, n] = -1.0, 1.0  # x = δ − w0
-    gradients[1, n] = 1.0
-    gradients[2, :n], gradients[2, n] = -g_delta / surface.load_factor, p_delta
-    matrix = np.empty((n + 1, n + 1))
-    matrix[:n, :n] = jac
-    matrix[:n, n] = g_delta
-    matrix[n] = direction @ gradients
-    return jac, lu_factor(matrix, check_finite=False), gradients
+    Where ∂g/∂w is positive definite (a stable state) it is solved by Cholesky and block
+    elimination (about 3x cheaper than LU); otherwise, or if the border is degenerate, by LU of
+    the whole matrix. `stable` records which, so stability comes for free with every point.
+    """
+
+    def __init__(self, surface, w, delta, row):
+        jac, g_delta, p_delta = surface.tangent(w, delta)
+        n = self.n = g_delta.size
+        gradients = np.zeros((3, n + 1))
+        gradients[0, 0], gradients[0, n] = -1.0, 1.0  # x = δ − w0
+        gradients[1, n] = 1.0
+        gradients[2, :n], gradients[2, n] = -g_delta / surface.load_factor, p_delta
+        self.gradients, border = gradients, row @ gradients
+        try:
+            self._cho = cho_factor(jac, check_finite=False)
+            self.stable = True
+        except LinAlgError:
+            self._cho, self.stable = None, False
+        if self._cho is not None:
+            self._border, self._b = border[:n], cho_solve(self._cho, g_delta, check_finite=False)
+            self._denominator = border[n] - self._border @ self._b
+            if abs(self._denominator) > 1e-12 * (abs(border[n]) + abs(self._border) @ abs(self._b)):
+                return
+        matrix = np.empty((n + 1, n + 1))
+        matrix[:n, :n], matrix[:n, n], matrix[n] = jac, g_delta, border
+        self._cho, self._lu = None, lu_factor(matrix, check_finite=False)
+
+    def solve(self, rhs):
+        """Solution (dw, dδ) of the bordered system for the right-hand side (n + 1,)."""
+        if self._cho is None:
+            step = lu_solve(self._lu, rhs, check_finite=False)
+            return step[:-1], step[-1]
+        a = cho_solve(self._cho, rhs[:-1], check_finite=False)
+        dd = (rhs[-1] - self._border @ a) / self._denominator
+        return a - dd * self._b, dd
+
+    def tangent(self):
+        """Unit tangent (dw/ds, dδ/ds, do/ds), |do/ds| = 1, with row · do/ds > 0."""
+        rhs = np.zeros(self.n + 1)
+        rhs[-1] = 1.0
+        dw, dd = self.solve(rhs)
+        observed = self.gradients @ np.append(dw, dd)
+        norm = np.linalg.norm(observed)
+        return dw / norm, dd / norm, observed / norm
 
 
 def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10):
@@ -116,9 +140,7 @@ def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10
     for iteration in range(1, max_newton + 1):
         g = surface.residual(w, delta)
         c = direction @ (_observables(surface, w, delta) - anchor) - ds
-        lu = _bordered(surface, w, delta, direction)[1]
-        step = lu_solve(lu, -np.append(g, c), check_finite=False)
-        dw, dd = step[:-1], step[-1]
+        dw, dd = Linearisation(surface, w, delta, direction).solve(-np.append(g, c))
         h = surface.gap(w, delta)
         dh = dd - surface.interp @ dw
         shrinking = dh < 0.0
@@ -138,20 +160,9 @@ def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10
             alpha *= 0.5
         w, delta = w_try, d_try
         increment = alpha * max(np.max(np.abs(dw)), abs(dd))
-        if increment <= tol * (1.0 + np.max(np.abs(w))) and np.max(np.abs(g_try)) <= tol * scale:
+        if increment <= np.sqrt(tol) * (1.0 + np.max(np.abs(w))) and np.max(np.abs(g_try)) <= tol * scale:
             return w, delta, iteration
     return None
-
-
-def _tangent(lu, gradients):
-    """Unit tangent: (dw/ds, dδ/ds, do/ds) with |do/ds| = 1, oriented along the constraint row."""
-    n = gradients.shape[1] - 1
-    rhs = np.zeros(n + 1)
-    rhs[n] = 1.0
-    tau = lu_solve(lu, rhs, check_finite=False)
-    observed = gradients @ tau
-    norm = np.linalg.norm(observed)
-    return tau[:n] / norm, tau[n] / norm, observed / norm
 
 
 def trace(surface, settings=TraceSettings(), progress=None):
@@ -171,9 +182,9 @@ def trace(surface, settings=TraceSettings(), progress=None):
     w, delta, its = start
     result.newton_iterations += its
     row = np.array([-1.0, -1.0, 0.0]) / np.sqrt(2.0)
-    jac, lu, gradients = _bordered(surface, w, delta, row)
-    result.append(surface, w, delta, jac)
-    tangent = _tangent(lu, gradients)
+    linear = Linearisation(surface, w, delta, row)
+    result.append(surface, w, delta, linear.stable)
+    tangent = linear.tangent()
     ds = 0.1
     log_span = np.log(s.x_start / 0.8)
     while result.p[-1] < s.p_end or not result.stable[-1]:
@@ -186,15 +197,15 @@ def trace(surface, settings=TraceSettings(), progress=None):
         if step is not None:
             w_new, d_new, its = step
             result.newton_iterations += its
-            jac_new, lu_new, gradients_new = _bordered(surface, w_new, d_new, t)
-            tangent_new = _tangent(lu_new, gradients_new)
+            linear = Linearisation(surface, w_new, d_new, t)
+            tangent_new = linear.tangent()
             turn = np.arccos(np.clip(tangent_new[2] @ t, -1.0, 1.0))
             dp = abs(surface.force(w_new, d_new) - result.p[-1])
             da = abs(surface.contact(w_new, d_new)[1] - result.a_c[-1])
             ratio = max(dp / s.dp, da / s.da, turn / s.turn, 1e-3)
             if ratio <= 1.0 or ds <= s.ds_min:
                 w, delta, row, tangent = w_new, d_new, t, tangent_new
-                result.append(surface, w, delta, jac_new)
+                result.append(surface, w, delta, linear.stable)
                 if progress is not None:
                     progress(min(1.0, np.log(s.x_start / max(result.x[-1], 1e-3)) / log_span))
                 effort = min(1.0, s.target_newton / its)

@@ -5,7 +5,7 @@ Units: δ̄o, x̄o in ε; P̄ in 2πRΔγ (negative = tensile); Ā in εR; ā_c 
 
 import csv
 import io
-from dataclasses import asdict, dataclass, fields
+from dataclasses import dataclass, fields
 
 import numpy as np
 
@@ -157,8 +157,3 @@ def read_events(approach, retraction, jumps_in, jumps_out):
         jump_in=jumps_in[0] if jumps_in else None,
         jump_out=jumps_out[0] if jumps_out else None,
     )
-
-
-def jump_record(jump):
-    """A `Jump` as a plain dict (for JSON output)."""
-    return asdict(jump)

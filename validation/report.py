@@ -5,14 +5,14 @@ from datetime import datetime, timezone
 
 #: Items of the paper not yet judged, with the roadmap stage that will judge them.
 PENDING = (
-    ("Fig. 3 / eq. 6: a_c at maximum adhesion vs mu", "FE asperity model"),
-    ("Fig. 4 / eq. 7: delta_oc vs mu (no jump-in)", "FE asperity model"),
-    ("Fig. 5 / eq. 9: force vs separation, mu = 0.091-0.425", "FE asperity model"),
-    ("Fig. 6 (caption lost) / eqs. 12-13: jump-in gap and separation", "FE asperity model"),
-    ("Fig. 7 / eqs. 16-19: Hertz-like force and area after contact", "FE asperity model"),
-    ("eqs. 15 -> 2: the force lands on P_off at jump-in", "FE asperity model"),
-    ("refit of the eight fit constants from the FE", "FE asperity model"),
-    ("Figs. 9-13: GW force, area and strength of adhesion", "GW integrator"),
+    ("Fig. 3 / eq. 6: a_c at maximum adhesion vs mu", "FE sweep over mu (verification stage)"),
+    ("Fig. 4 / eq. 7: delta_oc vs mu (no jump-in)", "FE sweep over mu (verification stage)"),
+    ("Fig. 5 / eq. 9: force vs separation, mu = 0.091-0.425", "FE sweep over mu (verification stage)"),
+    ("Fig. 6 (caption lost) / eqs. 12-13: jump-in gap and separation", "FE sweep over mu (verification stage)"),
+    ("Fig. 7 / eqs. 16-19: Hertz-like force and area after contact", "FE sweep over mu (verification stage)"),
+    ("eqs. 15 -> 2: the force lands on P_off at jump-in", "FE sweep over mu (verification stage)"),
+    ("refit of the eight fit constants from the FE", "FE sweep over mu (verification stage)"),
+    ("Figs. 9-13: GW force, area and strength of adhesion", "GW integrator (later stage)"),
 )
 
 
@@ -38,6 +38,6 @@ def render(checks, files, command):
         lines.append(f"| {c.claim} | {c.source} | {c.found:.6g} | {c.expected:.6g} | {tol} "
                      f"| {c.verdict} | {c.how} |")
     lines += ["", "## Not yet judged", "", "| item | needs |", "|---|---|"]
-    lines += [f"| {item} | {needs} (later roadmap stage) |" for item, needs in PENDING]
+    lines += [f"| {item} | {needs} |" for item, needs in PENDING]
     lines += ["", "## Files", ""] + [f"- `{name}`: {what}" for name, what in files]
     return "\n".join(lines) + "\n"
