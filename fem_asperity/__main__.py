@@ -100,7 +100,7 @@ def _curve(args, parser):
     from .elastic import Solid
     from .output import write_all
 
-    if args.layer_thickness is None and (args.layer_modulus_ratio != 1.0 or args.layer_nu):
+    if args.layer_thickness is None and (args.layer_modulus_ratio != 1.0 or args.layer_nu is not None):
         parser.error("curve: --layer-modulus-ratio and --layer-nu need --layer-thickness")
     solid = Solid(nu=args.nu, layer_thickness=args.layer_thickness,
                   layer_modulus_ratio=args.layer_modulus_ratio,

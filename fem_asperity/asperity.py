@@ -8,7 +8,7 @@ each event when the surface elements are twice as large.
 """
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -148,9 +148,5 @@ def solve_curve(mu, *, accuracy="default", solid=Solid(), radius_ratio=None, p_e
         return result
     coarse_report = (lambda f: progress(share + (1.0 - share) * f)) if progress else None
     coarse = _solve_once(mu, disc.coarsened(), solid, radius_ratio, coarse_report)
-    return CurveResult(
-        **{k: getattr(result, k) for k in result.__dataclass_fields__ if k not in
-           ("error_estimate", "wall_s")},
-        error_estimate=_difference(result, coarse),
-        wall_s=result.wall_s + coarse.wall_s,
-    )
+    return replace(result, error_estimate=_difference(result, coarse),
+                   wall_s=result.wall_s + coarse.wall_s)

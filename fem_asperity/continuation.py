@@ -63,11 +63,12 @@ class Trace:
     newton_iterations: int = 0
     rejected_steps: int = 0
 
-    def append(self, surface, w, delta, stable):
-        area, radius = surface.contact(w, delta)
+    def append(self, surface, w, delta, stable, force, contact):
+        """Record the state (w, δ) with its force P̄ and contact (Ā, ā_c), computed by the caller."""
+        area, radius = contact
         self.delta.append(delta)
         self.x.append(surface.centre_gap(w, delta))
-        self.p.append(surface.force(w, delta))
+        self.p.append(force)
         self.area.append(area)
         self.a_c.append(radius)
         self.stable.append(stable)
@@ -183,7 +184,8 @@ def trace(surface, settings=TraceSettings(), progress=None):
     result.newton_iterations += its
     row = np.array([-1.0, -1.0, 0.0]) / np.sqrt(2.0)
     linear = Linearisation(surface, w, delta, row)
-    result.append(surface, w, delta, linear.stable)
+    result.append(surface, w, delta, linear.stable, surface.force(w, delta),
+                  surface.contact(w, delta))
     tangent = linear.tangent()
     ds = 0.1
     log_span = np.log(s.x_start / 0.8)
@@ -200,12 +202,12 @@ def trace(surface, settings=TraceSettings(), progress=None):
             linear = Linearisation(surface, w_new, d_new, t)
             tangent_new = linear.tangent()
             turn = np.arccos(np.clip(tangent_new[2] @ t, -1.0, 1.0))
-            dp = abs(surface.force(w_new, d_new) - result.p[-1])
-            da = abs(surface.contact(w_new, d_new)[1] - result.a_c[-1])
+            force, contact = surface.force(w_new, d_new), surface.contact(w_new, d_new)
+            dp, da = abs(force - result.p[-1]), abs(contact[1] - result.a_c[-1])
             ratio = max(dp / s.dp, da / s.da, turn / s.turn, 1e-3)
             if ratio <= 1.0 or ds <= s.ds_min:
                 w, delta, row, tangent = w_new, d_new, t, tangent_new
-                result.append(surface, w, delta, linear.stable)
+                result.append(surface, w, delta, linear.stable, force, contact)
                 if progress is not None:
                     progress(min(1.0, np.log(s.x_start / max(result.x[-1], 1e-3)) / log_span))
                 effort = min(1.0, s.target_newton / its)

@@ -96,7 +96,7 @@ class Events:
         }
 
 
-def _vertex(t, y):
+def parabola_vertex(t, y):
     """Abscissa and value of the parabola through three points (t, y)."""
     a, b, c = np.polyfit(t - t[1], y, 2)
     if a == 0.0:
@@ -115,7 +115,7 @@ def _most_tensile(path):
     seg = path.branch
     if 0 < i < len(path) - 1 and seg[i - 1] == seg[i] == seg[i + 1]:
         window = slice(i - 1, i + 2)
-        delta, p = _vertex(path.delta[window], path.p[window])
+        delta, p = parabola_vertex(path.delta[window], path.p[window])
         lo, hi = sorted((path.delta[i - 1], path.delta[i + 1]))
         if lo <= delta <= hi:
             a_c = np.interp(delta, *_ascending(path.delta[window], path.a_c[window]))

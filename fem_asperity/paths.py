@@ -9,7 +9,7 @@ next stable branch that the curve reaches at the same δ̄o (the landing, solved
 import numpy as np
 
 from .continuation import ContinuationError, correct
-from .curve import Jump, _vertex, curve_from_columns
+from .curve import Jump, parabola_vertex, curve_from_columns
 
 _COLUMNS = ("delta", "x", "p", "area", "a_c")
 
@@ -31,7 +31,7 @@ def _fold(curve, i, j, descending):
     three = slice(centre - 1, centre + 2)
     steps = np.hypot(np.diff(curve.x[three]), np.diff(curve.delta[three]))
     arc = np.concatenate([[0.0], np.cumsum(steps)])
-    s_star, delta = _vertex(arc, curve.delta[three])
+    s_star, delta = parabola_vertex(arc, curve.delta[three])
     s_star = float(np.clip(s_star, arc[0], arc[-1]))
     values = {c: float(np.polyval(np.polyfit(arc, getattr(curve, c)[three], 2), s_star))
               for c in ("x", "p", "a_c")}
