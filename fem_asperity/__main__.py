@@ -3,7 +3,7 @@
 import sys
 
 from ._cli import Parser, ProgressBar, dump_json, print_table, run
-from .accuracy import PRESETS
+from .accuracy import METHODS, PRESETS
 from .laws import PAPER_LAWS
 from .scales import Scales, effective_modulus
 
@@ -41,8 +41,11 @@ def build_parser():
     _physical_arguments(scales)
     scales.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
-    curve = commands.add_parser("curve", help="FE approach + retraction: events and curves")
+    curve = commands.add_parser("curve", help="approach + retraction: events and curves")
     curve.add_argument("--mu", type=float, required=True, help="Tabor parameter (substrate E*)")
+    curve.add_argument("--method", choices=METHODS, default="fem",
+                       help="fem: finite elements (layers allowed); bem: boundary integral of the "
+                            "homogeneous half-space, faster (default: %(default)s)")
     curve.add_argument("--accuracy", choices=tuple(PRESETS), default="default",
                        help="mesh and step resolution (default: %(default)s)")
     curve.add_argument("--layer-thickness", type=float,
@@ -105,9 +108,11 @@ def _curve(args, parser):
     solid = Solid(nu=args.nu, layer_thickness=args.layer_thickness,
                   layer_modulus_ratio=args.layer_modulus_ratio,
                   layer_nu=args.nu if args.layer_nu is None else args.layer_nu)
-    bar = ProgressBar(f"FE curve mu={args.mu:g}")
+    if args.method == "bem" and args.layer_thickness is not None:
+        parser.error("curve: --method bem models a homogeneous half-space; use fem for a layer")
+    bar = ProgressBar(f"{args.method.upper()} curve mu={args.mu:g}")
     try:
-        result = solve_curve(args.mu, accuracy=args.accuracy, solid=solid,
+        result = solve_curve(args.mu, method=args.method, accuracy=args.accuracy, solid=solid,
                              error_estimate=not args.no_error_estimate, progress=bar)
     except ContinuationError as exc:
         print(f"{PROG}: continuation failed: {exc}", file=sys.stderr)

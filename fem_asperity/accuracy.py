@@ -1,7 +1,9 @@
-"""Accuracy presets: how fine the FE mesh and the continuation are for a given μ.
+"""Accuracy presets: how fine the surface discretisation and the continuation are for a given μ.
 
 The surface element size follows the cohesive zone at the contact edge, whose width shrinks like
-μ^(−3/2) √(Rε); the finely meshed strip covers the JKR contact radius at the deepest load.
+μ^(−3/2) √(Rε); the finely meshed strip covers the JKR contact radius at the deepest load. Both
+methods get the same surface node spacing: the boundary-integral method's linear elements are
+half as long as the FE's quadratic ones.
 """
 
 from dataclasses import dataclass, replace
@@ -21,11 +23,21 @@ PRESETS = {
 H_MAX, H_COHESIVE = 0.1, 0.25
 #: Truncation radius/depth of the half-space, in √(Rε): separations shift by ~2μ^(3/2)|P̄|/L.
 DOMAIN_SIZE = 1e5
+#: Last node of the boundary-integral traction grid, in √(Rε): the LJ tail beyond it carries a
+#: force of about (16/3) r⁻⁴ ≈ 5e-8 (the solid itself is not truncated).
+TRACTION_RADIUS = 100.0
+#: Methods: finite elements ('fem') or the boundary-integral solver ('bem').
+METHODS = ("fem", "bem")
 
 
 @dataclass(frozen=True)
 class Discretisation:
-    """Everything that sets the numerical resolution of one curve (lengths in √(Rε))."""
+    """Everything that sets the numerical resolution of one curve (lengths in √(Rε)).
+
+    method 'fem': quadratic elements of size h_surface along the surface, mesh grading `grading`,
+    domain size `size`. method 'bem': linear elements of size h_surface on [0, r_fine], then
+    growing by (1 + `grading`) per element up to the traction radius `size`.
+    """
 
     name: str
     h_surface: float
@@ -33,6 +45,7 @@ class Discretisation:
     size: float = DOMAIN_SIZE
     grading: float = 0.5
     order: int = 2
+    method: str = "fem"
     trace: TraceSettings = TraceSettings()
 
     def coarsened(self, factor=2.0):
@@ -45,17 +58,20 @@ def jkr_radius(load, mu):
     return ((1.5 * np.pi) * mu**1.5 * (load + 1.5 + np.sqrt(3.0 * load + 2.25))) ** (1.0 / 3.0)
 
 
-def discretisation(mu, accuracy="default", *, p_end=1.0):
-    """`Discretisation` for Tabor parameter `mu` and a preset name (draft, default, fine)."""
+def discretisation(mu, accuracy="default", *, p_end=1.0, method="fem"):
+    """`Discretisation` for Tabor parameter `mu`, a preset name (draft, default, fine) and a
+    method ('fem' or 'bem')."""
     mu = positive("mu", mu)
     if accuracy not in PRESETS:
         raise InputError(f"accuracy must be one of {', '.join(PRESETS)}; got {accuracy!r}")
+    if method not in METHODS:
+        raise InputError(f"method must be one of {', '.join(METHODS)}; got {method!r}")
     factor, turn = PRESETS[accuracy]
     h_surface = factor * min(H_MAX, H_COHESIVE * mu**-1.5)
     r_fine = max(4.0, 1.3 * jkr_radius(p_end, mu))
-    return Discretisation(
-        name=accuracy,
-        h_surface=h_surface,
-        r_fine=r_fine,
-        trace=TraceSettings(turn=turn, p_end=p_end),
-    )
+    trace = TraceSettings(turn=turn, p_end=p_end)
+    if method == "bem":
+        return Discretisation(name=accuracy, h_surface=0.5 * h_surface, r_fine=r_fine,
+                              size=TRACTION_RADIUS, grading=0.1, order=1, method="bem",
+                              trace=trace)
+    return Discretisation(name=accuracy, h_surface=h_surface, r_fine=r_fine, trace=trace)

@@ -1,7 +1,9 @@
-"""The FE single-asperity curve: `solve_curve(mu, ...)` → `CurveResult` (curve, events, provenance).
+"""The single-asperity curve: `solve_curve(mu, ...)` → `CurveResult` (curve, events, provenance).
 
-Method: axisymmetric P2 finite elements of the (layered) half-space (scikit-fem), condensed onto
-the surface; LJ 9-3 traction on the surface as a nonlinear boundary form with its consistent
+Two methods for the elastic solid, behind the same surface problem and path:
+'fem': axisymmetric P2 finite elements of the (layered) half-space (scikit-fem), condensed onto
+the surface; 'bem': the Boussinesq boundary integral of the homogeneous half-space on a radial
+grid (`bem`), no mesh and no truncation of the solid. Then: LJ 9-3 traction on the surface as a nonlinear boundary form with its consistent
 tangent; pseudo-arc-length continuation of the whole equilibrium curve; approach and retraction
 under δ̄o control read off it, jumps included (see `paths`). The error estimate is the change of
 each event when the surface elements are twice as large.
@@ -12,8 +14,9 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ._checks import in_range, positive
+from ._checks import InputError, in_range, positive
 from .accuracy import discretisation
+from .bem import BoussinesqSurface, radial_grid
 from .continuation import trace
 from .curve import Curve, Events, read_events
 from .elastic import HalfSpace, Solid
@@ -28,9 +31,9 @@ ESTIMATED = ("p_max", "delta_oc", "a_c", "delta_o_star", "x_oc", "delta_jump_in"
 
 @dataclass
 class Model:
-    """The solved FE model behind a curve (kept for field output): mesh, half-space, surface, trace."""
+    """The solved model behind a curve (kept for field output): half-space, surface, trace."""
 
-    half_space: HalfSpace
+    half_space: HalfSpace | BoussinesqSurface
     surface: LJSurface
     trace: object
 
@@ -81,11 +84,19 @@ class CurveResult:
         }
 
 
-def _solve_once(mu, disc, solid, radius_ratio, progress):
-    start = time.perf_counter()
+def _half_space(disc, solid):
+    """The elastic solid's surface operators for the discretisation's method."""
+    if disc.method == "bem":
+        return BoussinesqSurface(radial_grid(h=disc.h_surface, r_fine=disc.r_fine,
+                                             r_max=disc.size, growth=disc.grading))
     mesh = graded_mesh(h_surface=disc.h_surface, r_fine=disc.r_fine, size=disc.size,
                        grading=disc.grading, layer_thickness=solid.layer_thickness)
-    half_space = HalfSpace(mesh, order=disc.order, solid=solid)
+    return HalfSpace(mesh, order=disc.order, solid=solid)
+
+
+def _solve_once(mu, disc, solid, radius_ratio, progress):
+    start = time.perf_counter()
+    half_space = _half_space(disc, solid)
     surface = LJSurface(half_space, mu, radius_ratio=radius_ratio)
     traced = trace(surface, disc.trace, progress=progress)
     curve = equilibrium_curve(traced)
@@ -111,6 +122,7 @@ def _solve_once(mu, disc, solid, radius_ratio, progress):
         points=len(curve),
         newton_iterations=traced.newton_iterations,
         wall_s=time.perf_counter() - start,
+        method=disc.method,
         message=message,
         model=Model(half_space, surface, traced),
     )
@@ -123,10 +135,11 @@ def _difference(fine, coarse):
             for k in ESTIMATED}
 
 
-def solve_curve(mu, *, accuracy="default", solid=Solid(), radius_ratio=None, p_end=1.0,
-                error_estimate=True, progress=None):
+def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_ratio=None,
+                p_end=1.0, error_estimate=True, progress=None):
     """Approach and retraction of a rigid sphere on the half-space at Tabor parameter `mu`.
 
+    method: 'fem' (finite elements, layers allowed) or 'bem' (boundary integral, homogeneous).
     accuracy: 'draft', 'default' or 'fine' (see `accuracy.PRESETS`).
     solid: `Solid` (homogeneous by default; a layer with thickness in √(Rε)).
     radius_ratio: R/ε for the exact sphere profile instead of Derjaguin's parabola (None).
@@ -140,7 +153,9 @@ def solve_curve(mu, *, accuracy="default", solid=Solid(), radius_ratio=None, p_e
     positive("p_end", p_end)
     if radius_ratio is not None:
         in_range("radius_ratio", radius_ratio, 10.0, np.inf, closed_lo=True)
-    disc = discretisation(mu, accuracy, p_end=p_end)
+    disc = discretisation(mu, accuracy, p_end=p_end, method=method)
+    if method == "bem" and solid.layer_thickness is not None:
+        raise InputError("method 'bem' models a homogeneous half-space; use 'fem' for a layer")
     share = 0.7 if error_estimate else 1.0
     report = (lambda f: progress(share * f)) if progress else None
     result = _solve_once(mu, disc, solid, radius_ratio, report)

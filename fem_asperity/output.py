@@ -113,9 +113,12 @@ def _render(points, triangles, u3, sigma, path, title, window):
 
 
 def write_all(result, folder):
-    """Curves, the curve figure and the fields at P̄max (approach) and P̄off (retraction)."""
+    """Curves, the curve figure and, for the FE (the BEM has no bulk mesh), the fields at P̄max
+    (approach) and P̄off (retraction)."""
     folder = Path(folder)
     paths = write_curves(result, folder) + [plot_curve(result, folder / "curve.png")]
+    if result.method != "fem":
+        return paths
     ev, eq = result.events, result.equilibrium
     for label, delta, p in (("p_max", ev.delta_oc, ev.p_max), ("p_off", ev.delta_off, ev.p_off)):
         paths += write_fields(result, folder, label, _state_index(eq, delta, p))

@@ -1,0 +1,73 @@
+"""The boundary-integral half-space: the surface compliance from the Boussinesq kernel, no mesh.
+
+Same units and interface as `elastic.HalfSpace` (r in √(Rε), w in ε, E* = 1, the 2π dropped,
+surface integrals weighted by r), so `surface.LJSurface` and the continuation run on either.
+
+Galerkin form on a radial grid of linear elements: traction p and deflection w are both
+piecewise linear with nodal values; with M = ∫ φᵢ φⱼ r dr and B = ∫ φᵢ(r) u[φⱼ](r) r dr (u the
+Boussinesq deflection of a hat traction, `boussinesq.displacement_matrix`), a load vector
+f = ∫ p φᵢ r dr gives p = M⁻¹ f and M w = B p, so the compliance is C = M⁻¹ B M⁻¹, symmetric and
+positive definite like the FE's. The half-space is infinite: there is no truncation of the
+solid, only of the traction beyond the last node.
+"""
+
+import numpy as np
+from scipy.linalg import cho_factor, cho_solve
+from scipy.sparse import csr_matrix
+
+from ._checks import InputError
+from .boussinesq import displacement_matrix
+
+
+def radial_grid(*, h, r_fine, r_max, growth=0.1):
+    """Nodes 0, h, 2h, … up to r_fine, then element sizes growing by (1 + growth) up to r_max."""
+    if not 0.0 < h <= r_fine < r_max:
+        raise InputError(f"need 0 < h <= r_fine < r_max; got {h}, {r_fine}, {r_max}")
+    uniform = np.linspace(0.0, r_fine, int(np.ceil(r_fine / h)) + 1)
+    tail, size = [r_fine], uniform[1]
+    while tail[-1] < r_max:
+        size *= 1.0 + growth
+        tail.append(tail[-1] + size)
+    tail[-1] = max(tail[-1], r_max)
+    return np.concatenate([uniform, tail[1:]])
+
+
+class BoussinesqSurface:
+    """Surface operators of the homogeneous elastic half-space on the radial grid `nodes`.
+
+    Attributes as `elastic.HalfSpace`: r_nodes, r_quad (Gauss points, `quad_points` per element),
+    weights (Gauss weight × r), interp (nodal values → values at r_quad), compliance (dense C),
+    dofs (unknowns: the surface nodes).
+    """
+
+    def __init__(self, nodes, *, quad_points=4):
+        nodes = np.asarray(nodes, dtype=float)
+        if nodes[0] != 0.0 or np.any(np.diff(nodes) <= 0.0):
+            raise InputError("the radial grid must start at 0 and increase")
+        x, w = np.polynomial.legendre.leggauss(quad_points)
+        x, w = 0.5 * (x + 1.0), 0.5 * w
+        a, length = nodes[:-1], np.diff(nodes)
+        self.r_nodes = nodes
+        self.r_quad = (a[:, None] + length[:, None] * x).ravel()
+        self.weights = (length[:, None] * w).ravel() * self.r_quad
+        element = np.repeat(np.arange(a.size), quad_points)
+        rows = np.tile(np.arange(self.r_quad.size), 2)
+        cols = np.concatenate([element, element + 1])
+        values = np.concatenate([np.tile(1.0 - x, a.size), np.tile(x, a.size)])
+        self.interp = csr_matrix((values, (rows, cols)), shape=(self.r_quad.size, nodes.size))
+        weighted = self.interp.T.multiply(self.weights).tocsr()
+        mass = (weighted @ self.interp).toarray()
+        coupling = weighted @ displacement_matrix(nodes, self.r_quad)
+        factor = cho_factor(mass)
+        half = cho_solve(factor, 0.5 * (coupling + coupling.T))
+        self.compliance = cho_solve(factor, half.T)
+        self.compliance = 0.5 * (self.compliance + self.compliance.T)
+        self.dofs = nodes.size
+
+    def nodal_load(self, pressure_at_quad):
+        """Consistent surface load ∫ p φᵢ r dr of a pressure given at the quadrature points."""
+        return self.interp.T @ (self.weights * pressure_at_quad)
+
+    def deflection(self, pressure_at_quad):
+        """Upward surface displacement w at the nodes (negative under compression)."""
+        return -self.compliance @ self.nodal_load(pressure_at_quad)

@@ -1,0 +1,150 @@
+"""Axisymmetric Boussinesq influence of a piecewise-linear surface traction on a half-space.
+
+With E* = 1 a normal traction p(s) (compressive positive) on the surface of a half-space moves the
+surface at radius r down by
+
+    u(r) = (4/π) ∫₀^∞ p(s) s/(r+s) K(m) ds,    m = 4rs/(r+s)²,
+
+with K the complete elliptic integral of the first kind (parameter m). K has a logarithmic
+singularity at s = r, K(m) = P(m₁) − Q(m₁) ln m₁ with m₁ = 1 − m = ((s−r)/(s+r))² and
+Q(m₁) = K(m₁)/π analytic, and the whole kernel is singular on the circle |s| = r of the complex
+s-plane. The integral over each element of the radial grid is therefore done in three ways:
+
+- far from r (distance ≥ the element's length): Gauss-Legendre, 8 points, error ≈ 5.8⁻¹⁶;
+- near r: as ∫_r^b − ∫_r^a, each split into pieces that double in length away from r, so that
+  every piece is at least its own length away from the singular circle;
+- on the piece that starts at r: the log term −2 f Q̃(m₁) ln|s−r| (Q̃ the Taylor polynomial of
+  Q, f = (4/π) s/(r+s)) by Gauss quadrature with weight −ln x, which integrates it exactly for
+  polynomial factors of degree < 16, and the smooth remainder by Gauss-Legendre.
+
+The rule is checked against adaptive quadrature to 1e-12 in the tests.
+"""
+
+from math import gamma
+
+import numpy as np
+from scipy.special import comb, ellipkm1, roots_legendre
+
+#: Points of the Gauss-Legendre and of the logarithmic Gauss rules.
+_POINTS = 8
+#: Taylor coefficients of Q(m₁) = K(m₁)/π = ½ Σ [(½)ₙ/n!]² m₁ⁿ used to split off the log.
+_Q_TAYLOR = np.array([0.5 * (gamma(n + 0.5) / (gamma(0.5) * gamma(n + 1))) ** 2 for n in range(6)])
+#: Kernel evaluations per chunk of the dense far-field sum (bounds memory at ~50 MB).
+_CHUNK = 2_000_000
+
+
+def log_gauss(n):
+    """Nodes and weights of the n-point Gauss rule for ∫₀¹ f(x) (−ln x) dx (exact for deg < 2n).
+
+    Gautschi's modified Chebyshev algorithm with the monic shifted Legendre polynomials, whose
+    modified moments ∫₀¹ P*ₖ(x)(−ln x) dx = (−1)ᵏ/(k(k+1)) (k ≥ 1) are known in closed form,
+    then Golub-Welsch.
+    """
+    k = np.arange(2 * n)
+    a = np.full(2 * n, 0.5)
+    b = np.concatenate([[0.0], k[1:] ** 2 / (4.0 * (4.0 * k[1:] ** 2 - 1.0))])
+    legendre_moments = np.concatenate([[1.0], (-1.0) ** k[1:] / (k[1:] * (k[1:] + 1.0))])
+    sigma, sigma_prev = legendre_moments / comb(2 * k, k), np.zeros(2 * n)
+    alpha, beta = np.zeros(n), np.zeros(n)
+    alpha[0], beta[0] = a[0] + sigma[1] / sigma[0], sigma[0]
+    for j in range(1, n):
+        nxt = np.zeros(2 * n)
+        ell = np.arange(j, 2 * n - j)
+        nxt[ell] = (sigma[ell + 1] - (alpha[j - 1] - a[ell]) * sigma[ell]
+                    - beta[j - 1] * sigma_prev[ell] + b[ell] * sigma[ell - 1])
+        alpha[j] = a[j] + nxt[j + 1] / nxt[j] - sigma[j] / sigma[j - 1]
+        beta[j] = nxt[j] / sigma[j - 1]
+        sigma_prev, sigma = sigma, nxt
+    off = np.sqrt(beta[1:])
+    nodes, vectors = np.linalg.eigh(np.diag(alpha) + np.diag(off, 1) + np.diag(off, -1))
+    return nodes, beta[0] * vectors[0] ** 2
+
+
+def _unit_gauss(n):
+    x, w = roots_legendre(n)
+    return 0.5 * (x + 1.0), 0.5 * w
+
+
+_GL = _unit_gauss(_POINTS)
+_LOG = log_gauss(_POINTS)
+
+
+def kernel(r, s):
+    """(4/π) s/(r+s) K(4rs/(r+s)²): surface deflection at r per unit traction at s per unit ds."""
+    return (4.0 / np.pi) * s / (r + s) * ellipkm1(((s - r) / (s + r)) ** 2)
+
+
+def _split_kernel(r, s):
+    """(regular, log) with kernel = regular + log · ln|s − r|, both smooth near s = r."""
+    m1 = ((s - r) / (s + r)) ** 2
+    f = (4.0 / np.pi) * s / (r + s)
+    q = np.polynomial.polynomial.polyval(m1, _Q_TAYLOR)
+    return f * (ellipkm1(m1) + 2.0 * q * np.log(np.abs(s - r))), -2.0 * f * q
+
+
+def _from_point(r, c, a, length):
+    """∫_r^c kernel(r, s) · (1, (s − a)/length) ds for arrays r > 0, c, a, length (same shape)."""
+    i0, i1 = np.zeros(r.size), np.zeros(r.size)
+    live = c != r
+    if live.any():
+        i0[live], i1[live] = _from_point_live(r[live], c[live], a[live], length[live])
+    return i0, i1
+
+
+def _from_point_live(r, c, a, length):
+    span = np.abs(c - r)
+    sign = np.sign(c - r)
+    first = np.minimum(span, 0.5 * r)
+    x, wx = _GL
+    # the piece [r, r + first·sign]: log part by the −ln x rule, the rest by Gauss-Legendre
+    s = r[:, None] + (sign * first)[:, None] * x
+    regular, log = _split_kernel(r[:, None], s)
+    lin = (s - a[:, None]) / length[:, None]
+    values = (regular + log * np.log(first)[:, None]) * wx
+    i0, i1 = values.sum(1), (values * lin).sum(1)
+    t, wt = _LOG
+    s = r[:, None] + (sign * first)[:, None] * t
+    _, log = _split_kernel(r[:, None], s)
+    lin = (s - a[:, None]) / length[:, None]
+    i0 -= (log * wt).sum(1)
+    i1 -= (log * lin * wt).sum(1)
+    i0, i1 = sign * first * i0, sign * first * i1
+    # pieces doubling in length away from r, each at least its length from the circle |s| = r
+    lo = first.copy()
+    while np.any(lo < span):
+        hi = np.minimum(2.0 * lo, span)
+        s = r[:, None] + sign[:, None] * (lo[:, None] + (hi - lo)[:, None] * x)
+        k = kernel(r[:, None], s) * wx * (sign * (hi - lo))[:, None]
+        i0 += k.sum(1)
+        i1 += (k * (s - a[:, None]) / length[:, None]).sum(1)
+        lo = hi
+    return i0, i1
+
+
+def displacement_matrix(nodes, r):
+    """A with u(r) = A @ p: the downward deflection at radii `r` > 0 under the piecewise-linear
+    traction with nodal values p on the radial grid `nodes` (increasing, from 0; zero beyond)."""
+    r = np.asarray(r, dtype=float)
+    a, b = nodes[:-1], nodes[1:]
+    length = b - a
+    x, wx = _GL
+    s = a[:, None] + length[:, None] * x  # (elements, points)
+    A = np.zeros((r.size, nodes.size))
+    rows = max(1, _CHUNK // s.size)
+    for start in range(0, r.size, rows):
+        rr = r[start:start + rows]
+        distance = np.maximum(a - rr[:, None], rr[:, None] - b)  # < 0 inside an element
+        far = (distance >= length) | (rr[:, None] == 0.0)
+        k = np.where(far[:, :, None], kernel(rr[:, None, None], s), 0.0) * (wx * length[:, None])
+        i1 = (k * x).sum(2)
+        i0 = k.sum(2)
+        A[start:start + rows, :-1] += i0 - i1
+        A[start:start + rows, 1:] += i1
+        q, e = np.nonzero(~far)
+        rq = rr[q]
+        hi0, hi1 = _from_point(rq, b[e], a[e], length[e])
+        lo0, lo1 = _from_point(rq, a[e], a[e], length[e])
+        i0, i1 = hi0 - lo0, hi1 - lo1
+        np.add.at(A, (start + q, e), i0 - i1)
+        np.add.at(A, (start + q, e + 1), i1)
+    return A
