@@ -58,6 +58,15 @@ def build_parser():
                        help="skip the second, coarser mesh (about a third faster)")
     curve.add_argument("--out", help="folder for curve CSVs, curve.png, result.json, VTU/PNG fields")
     curve.add_argument("--json", action="store_true", help="print JSON instead of a table")
+
+    onset = commands.add_parser("onset", help="smallest mu with a jump-in (displacement control)")
+    onset.add_argument("--method", choices=METHODS, default="bem",
+                       help="solver of each curve (default: %(default)s)")
+    onset.add_argument("--accuracy", choices=tuple(PRESETS), default="default",
+                       help="resolution of each curve (default: %(default)s)")
+    onset.add_argument("--bracket", type=float, nargs=2, default=(0.3, 1.0), metavar=("LO", "HI"),
+                       help="mu without and with a jump-in (default: 0.3 1.0)")
+    onset.add_argument("--json", action="store_true", help="print JSON instead of a table")
     return parser
 
 
@@ -133,10 +142,29 @@ def _curve(args, parser):
     return 0
 
 
+def _onset(args, parser):
+    from .continuation import ContinuationError
+    from .onset import jump_in_onset
+
+    print(f"{PROG}: bisecting the fold margin over mu in {args.bracket} ...", file=sys.stderr)
+    try:
+        row = jump_in_onset(method=args.method, accuracy=args.accuracy,
+                            bracket=tuple(args.bracket)).records()
+    except ContinuationError as exc:
+        print(f"{PROG}: continuation failed: {exc}", file=sys.stderr)
+        return 1
+    if args.json:
+        dump_json(row)
+    else:
+        print_table([{"quantity": k, "value": v} for k, v in row.items()], ("quantity", "value"))
+    return 0
+
+
 def main(argv=None):
     parser = build_parser()
     args = parser.parse_args(argv)
-    return {"laws": _laws, "scales": _scales, "curve": _curve}[args.command](args, parser) or 0
+    return {"laws": _laws, "scales": _scales, "curve": _curve,
+            "onset": _onset}[args.command](args, parser) or 0
 
 
 if __name__ == "__main__":

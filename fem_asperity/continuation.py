@@ -59,12 +59,14 @@ class Trace:
     area: list = field(default_factory=list)
     a_c: list = field(default_factory=list)
     stable: list = field(default_factory=list)
+    tangents: list = field(default_factory=list)
     states: list = field(default_factory=list)
     newton_iterations: int = 0
     rejected_steps: int = 0
 
-    def append(self, surface, w, delta, stable, force, contact):
-        """Record the state (w, δ) with its force P̄ and contact (Ā, ā_c), computed by the caller."""
+    def append(self, surface, w, delta, stable, force, contact, tangent):
+        """Record the state (w, δ) with its force P̄, contact (Ā, ā_c) and unit tangent
+        d(x̄o, δ̄o, P̄)/ds, computed by the caller."""
         area, radius = contact
         self.delta.append(delta)
         self.x.append(surface.centre_gap(w, delta))
@@ -72,6 +74,7 @@ class Trace:
         self.area.append(area)
         self.a_c.append(radius)
         self.stable.append(stable)
+        self.tangents.append(tangent)
         self.states.append(w.copy())
 
 
@@ -184,9 +187,9 @@ def trace(surface, settings=TraceSettings(), progress=None):
     result.newton_iterations += its
     row = np.array([-1.0, -1.0, 0.0]) / np.sqrt(2.0)
     linear = Linearisation(surface, w, delta, row)
-    result.append(surface, w, delta, linear.stable, surface.force(w, delta),
-                  surface.contact(w, delta))
     tangent = linear.tangent()
+    result.append(surface, w, delta, linear.stable, surface.force(w, delta),
+                  surface.contact(w, delta), tangent[2])
     ds = 0.1
     log_span = np.log(s.x_start / 0.8)
     while result.p[-1] < s.p_end or not result.stable[-1]:
@@ -207,7 +210,7 @@ def trace(surface, settings=TraceSettings(), progress=None):
             ratio = max(dp / s.dp, da / s.da, turn / s.turn, 1e-3)
             if ratio <= 1.0 or ds <= s.ds_min:
                 w, delta, row, tangent = w_new, d_new, t, tangent_new
-                result.append(surface, w, delta, linear.stable, force, contact)
+                result.append(surface, w, delta, linear.stable, force, contact, tangent[2])
                 if progress is not None:
                     progress(min(1.0, np.log(s.x_start / max(result.x[-1], 1e-3)) / log_span))
                 effort = min(1.0, s.target_newton / its)
