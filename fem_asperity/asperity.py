@@ -21,7 +21,7 @@ from .continuation import trace
 from .curve import Curve, Events, read_events
 from .elastic import HalfSpace, Solid
 from .mesh import graded_mesh
-from .paths import equilibrium_curve, walk
+from .paths import equilibrium_curve, refine_force_extrema, walk
 from .surface import LJSurface
 
 #: Event keys compared between the two meshes of the error estimate.
@@ -99,6 +99,7 @@ def _solve_once(mu, disc, solid, radius_ratio, progress):
     half_space = _half_space(disc, solid)
     surface = LJSurface(half_space, mu, radius_ratio=radius_ratio)
     traced = trace(surface, disc.trace, progress=progress)
+    refine_force_extrema(surface, traced)
     curve = equilibrium_curve(traced)
     order = np.arange(len(curve))
     approach, jumps_in = walk(surface, traced, curve, order)

@@ -67,15 +67,16 @@ class Trace:
     def append(self, surface, w, delta, stable, force, contact, tangent):
         """Record the state (w, δ) with its force P̄, contact (Ā, ā_c) and unit tangent
         d(x̄o, δ̄o, P̄)/ds, computed by the caller."""
+        self.insert(len(self.delta), surface, w, delta, stable, force, contact, tangent)
+
+    def insert(self, index, surface, w, delta, stable, force, contact, tangent):
+        """As `append`, at position `index` along the curve."""
         area, radius = contact
-        self.delta.append(delta)
-        self.x.append(surface.centre_gap(w, delta))
-        self.p.append(force)
-        self.area.append(area)
-        self.a_c.append(radius)
-        self.stable.append(stable)
-        self.tangents.append(tangent)
-        self.states.append(w.copy())
+        values = (delta, surface.centre_gap(w, delta), force, area, radius, stable, tangent,
+                  w.copy())
+        for name, value in zip(("delta", "x", "p", "area", "a_c", "stable", "tangents", "states"),
+                               values):
+            getattr(self, name).insert(index, value)
 
 
 def _observables(surface, w, delta):

@@ -7,11 +7,55 @@ next stable branch that the curve reaches at the same δ̄o (the landing, solved
 """
 
 import numpy as np
+from scipy.optimize import brentq
 
-from .continuation import ContinuationError, correct
+from .continuation import ContinuationError, Linearisation, correct
 from .curve import Jump, parabola_vertex, curve_from_columns
 
 _COLUMNS = ("delta", "x", "p", "area", "a_c")
+
+
+def refine_force_extrema(surface, trace, *, xtol=1e-9):
+    """Insert into `trace` the exact extrema of P̄ between stable neighbouring samples.
+
+    Where the tangent's P̄ component dP̄/ds changes sign between samples k and k + 1, the root of
+    dP̄/ds in the arc length σ ∈ (0, σ₁) along the tangent at k is found by Brent's method, each
+    evaluation a converged point (`correct`) and its exact tangent. Sampled at a turn limit of
+    0.1 rad, the parabola through three samples alone misplaces P̄off by ~3e-5 at μ = 1.
+    Returns the number of points inserted.
+    """
+    inserted = 0
+    k = 0
+    while k < len(trace.p) - 1:
+        t0, t1 = trace.tangents[k], trace.tangents[k + 1]
+        if not (trace.stable[k] and trace.stable[k + 1]) or t0[2] * t1[2] >= 0.0:
+            k += 1
+            continue
+        anchor = np.array([trace.x[k], trace.delta[k], trace.p[k]])
+        end = float(t0 @ (np.array([trace.x[k + 1], trace.delta[k + 1], trace.p[k + 1]]) - anchor))
+        states = {}
+
+        def slope(sigma, k=k, anchor=anchor, end=end, t0=t0, states=states):
+            frac = sigma / end
+            guess = (1.0 - frac) * trace.states[k] + frac * trace.states[k + 1]
+            d_guess = (1.0 - frac) * trace.delta[k] + frac * trace.delta[k + 1]
+            solved = correct(surface, guess, d_guess, t0, anchor, sigma)
+            if solved is None:
+                raise ContinuationError(f"no equilibrium at the extremum near δ = {d_guess:.6g}")
+            w, d, _ = solved
+            linear = Linearisation(surface, w, d, t0)
+            states[sigma] = (w, d, linear)
+            return linear.tangent()[2][2]
+
+        sigma = brentq(slope, 0.0, end, xtol=xtol * max(end, 1.0), rtol=1e-12) if end > 0 else None
+        if sigma is not None and sigma in states and 0.0 < sigma < end:
+            w, d, linear = states[sigma]
+            trace.insert(k + 1, surface, w, d, linear.stable, surface.force(w, d),
+                         surface.contact(w, d), linear.tangent()[2])
+            inserted += 1
+            k += 1
+        k += 1
+    return inserted
 
 
 def equilibrium_curve(trace):
