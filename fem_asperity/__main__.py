@@ -146,7 +146,6 @@ def _onset(args, parser):
     from .continuation import ContinuationError
     from .onset import jump_in_onset
 
-    print(f"{PROG}: bisecting the fold margin over mu in {args.bracket} ...", file=sys.stderr)
     try:
         row = jump_in_onset(method=args.method, accuracy=args.accuracy,
                             bracket=tuple(args.bracket)).records()

@@ -19,6 +19,8 @@ PRESETS = {
     "default": (1.0, 0.1),
     "fine": (0.5, 0.05),
 }
+#: Largest turn limit (rad): at 0.4 the BEM at μ = 3 (h = 0.1) stepped off the curve.
+MAX_TURN = 0.2
 #: Surface element size of `default`: min(H_MAX, H_COHESIVE · μ^(−3/2)), in √(Rε).
 H_MAX, H_COHESIVE = 0.1, 0.25
 #: Largest boundary-integral element at `default`: linear elements reproduce the centre
@@ -58,10 +60,10 @@ class Discretisation:
         limit `factor` times larger, the bulk (FE) or tail (BEM) grading 5/3 as steep. So the
         estimate also sees the far field (with FE grading 0.5 instead of 0.3 a Hertz load's
         deflection is 2.3e-4 too small near the axis, against 3e-5) and the sampling of the
-        curve (P̄off moves by 3e-5 at μ = 1 from turn 0.1 to 0.02)."""
+        curve (P̄off moves by 3e-5 at μ = 1 from turn 0.1 to 0.02). The turn stays ≤ MAX_TURN."""
         return replace(self, name=f"{self.name}/coarse", h_surface=self.h_surface * factor,
                        grading=min(1.0, self.grading * 5.0 / 3.0),
-                       trace=replace(self.trace, turn=self.trace.turn * factor))
+                       trace=replace(self.trace, turn=min(self.trace.turn * factor, MAX_TURN)))
 
 
 def jkr_radius(load, mu):

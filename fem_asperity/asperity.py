@@ -17,7 +17,7 @@ import numpy as np
 from ._checks import InputError, in_range, positive
 from .accuracy import discretisation
 from .bem import BoussinesqSurface, radial_grid
-from .continuation import trace
+from .continuation import ContinuationError, trace
 from .curve import Curve, Events, read_events
 from .elastic import HalfSpace, Solid
 from .mesh import graded_mesh
@@ -145,8 +145,9 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     solid: `Solid` (homogeneous by default; a layer with thickness in √(Rε)).
     radius_ratio: R/ε for the exact sphere profile instead of Derjaguin's parabola (None).
     p_end: the approach goes on until P̄ reaches this compressive force (2πRΔγ units).
-    error_estimate: also solve on a mesh with twice as large surface elements and report the
-        change of every event (costs about half as much again).
+    error_estimate: also solve with twice as large surface elements (and turn limit, and a
+        steeper far-field grading) and report the change of every event (costs about half as
+        much again). If that coarser solve fails, the estimate is None and `message` says why.
     progress: callable(fraction in [0, 1]) for a progress bar.
     Returns a `CurveResult`; raises `ContinuationError` if the path cannot be followed.
     """
@@ -163,6 +164,12 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     if not error_estimate:
         return result
     coarse_report = (lambda f: progress(share + (1.0 - share) * f)) if progress else None
-    coarse = _solve_once(mu, disc.coarsened(), solid, radius_ratio, coarse_report)
+    start = time.perf_counter()
+    try:
+        coarse = _solve_once(mu, disc.coarsened(), solid, radius_ratio, coarse_report)
+    except ContinuationError as exc:
+        return replace(result, wall_s=result.wall_s + time.perf_counter() - start,
+                       message=f"{result.message}; no error estimate: the coarser "
+                               f"discretisation failed ({exc}); try a finer accuracy")
     return replace(result, error_estimate=_difference(result, coarse),
                    wall_s=result.wall_s + coarse.wall_s)

@@ -196,6 +196,8 @@ def trace(surface, settings=TraceSettings(), progress=None):
     while result.p[-1] < s.p_end or not result.stable[-1]:
         if len(result.delta) >= s.max_points:
             raise ContinuationError(f"point budget of {s.max_points} exhausted at δ = {delta:.6g}")
+        if result.x[-1] > 2.0 * s.x_start:
+            raise ContinuationError(f"the path turned back to separation x = {result.x[-1]:.6g}")
         dw, dd, t = tangent
         anchor = np.array([result.x[-1], delta, result.p[-1]])
         step = correct(surface, w + ds * dw, delta + ds * dd, row, anchor, ds * (row @ t),

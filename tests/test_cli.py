@@ -118,8 +118,33 @@ def test_curve_json_files_and_progress(tmp_path):
     ["curve"], ["curve", "--mu", "0"], ["curve", "--mu", "1", "--accuracy", "best"],
     ["curve", "--mu", "1", "--layer-modulus-ratio", "2"],
     ["curve", "--mu", "1", "--layer-thickness", "-1"], ["curve", "--mu", "1", "--nu", "0.5"],
+    ["curve", "--mu", "1", "--method", "bem", "--layer-thickness", "1"],
+    ["curve", "--mu", "1", "--method", "spectral"],
+    ["onset", "--bracket", "0.3", "0.5"], ["onset", "--bracket", "1", "0.3"],
 ])
 def test_curve_bad_input_is_one_line_exit_2(args):
     done = cli("fem_asperity", *args)
     assert done.returncode == 2
     assert len(done.stderr.strip().splitlines()) == 1, done.stderr
+
+
+def test_curve_bem_json_and_files(tmp_path):
+    out = tmp_path / "bem"
+    done = cli("fem_asperity", "curve", "--mu", "1", "--method", "bem", "--accuracy", "draft",
+               "--json", "--out", str(out))
+    assert done.returncode == 0, done.stderr
+    events = json.loads(done.stdout)
+    assert CURVE_KEYS <= set(events) and events["method"] == "bem"
+    assert events["p_off"] == pytest.approx(-0.83533, abs=5e-5)  # FE: -0.83532
+    assert events["dofs"] == events["surface_nodes"]
+    assert {p.name for p in out.iterdir()} == {"approach.csv", "retraction.csv",
+                                                "equilibrium.csv", "result.json", "curve.png"}
+
+
+def test_onset_json():
+    done = cli("fem_asperity", "onset", "--accuracy", "draft", "--json")
+    assert done.returncode == 0, done.stderr
+    row = json.loads(done.stdout)
+    assert set(row) == {"mu_onset", "lo", "hi", "method", "accuracy", "evaluations", "wall_s"}
+    assert row["lo"] <= row["mu_onset"] <= row["hi"] and row["hi"] - row["lo"] <= 0.01
+    assert 0.69 < row["mu_onset"] < 0.705  # FE fold margins change sign between 0.69 and 0.70
