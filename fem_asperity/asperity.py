@@ -94,7 +94,9 @@ def _half_space(disc, solid):
     return HalfSpace(mesh, order=disc.order, solid=solid)
 
 
-def _solve_once(mu, disc, solid, radius_ratio, progress):
+def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, progress=None):
+    """One curve on the given `accuracy.Discretisation` (no error estimate, inputs unchecked
+    beyond the discretisation's own): for studies that set the resolution themselves."""
     start = time.perf_counter()
     half_space = _half_space(disc, solid)
     surface = LJSurface(half_space, mu, radius_ratio=radius_ratio)
@@ -160,13 +162,15 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
         raise InputError("method 'bem' models a homogeneous half-space; use 'fem' for a layer")
     share = 0.7 if error_estimate else 1.0
     report = (lambda f: progress(share * f)) if progress else None
-    result = _solve_once(mu, disc, solid, radius_ratio, report)
+    result = solve_discretised(mu, disc, solid=solid, radius_ratio=radius_ratio,
+                               progress=report)
     if not error_estimate:
         return result
     coarse_report = (lambda f: progress(share + (1.0 - share) * f)) if progress else None
     start = time.perf_counter()
     try:
-        coarse = _solve_once(mu, disc.coarsened(), solid, radius_ratio, coarse_report)
+        coarse = solve_discretised(mu, disc.coarsened(), solid=solid,
+                                   radius_ratio=radius_ratio, progress=coarse_report)
     except ContinuationError as exc:
         return replace(result, wall_s=result.wall_s + time.perf_counter() - start,
                        message=f"{result.message}; no error estimate: the coarser "

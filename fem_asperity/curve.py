@@ -106,26 +106,12 @@ def parabola_vertex(t, y):
 
 
 def _most_tensile(path):
-    """(P̄, δ̄o, ā_c) at the minimum of P̄ along `path`, located between samples.
-
-    An interior minimum of a smooth segment is refined by the parabola P̄(δ̄o) through the sample
-    and its two neighbours; a minimum at a segment's end (a jump's landing) is taken as sampled.
-    """
+    """(P̄, δ̄o, ā_c) at the minimum of P̄ along `path`: the lowest sample, which is exact where
+    the minimum is interior to a stable segment (`paths.refine_force_extrema` inserts it) and a
+    jump's landing otherwise. (A parabola through three samples would move δ̄o by ~1e-4 where P̄
+    is flat at its minimum.)"""
     i = int(np.argmin(path.p))
-    seg = path.branch
-    if 0 < i < len(path) - 1 and seg[i - 1] == seg[i] == seg[i + 1]:
-        window = slice(i - 1, i + 2)
-        delta, p = parabola_vertex(path.delta[window], path.p[window])
-        lo, hi = sorted((path.delta[i - 1], path.delta[i + 1]))
-        if lo <= delta <= hi:
-            a_c = np.interp(delta, *_ascending(path.delta[window], path.a_c[window]))
-            return float(p), float(delta), float(a_c)
     return float(path.p[i]), float(path.delta[i]), float(path.a_c[i])
-
-
-def _ascending(t, y):
-    order = np.argsort(t)
-    return t[order], y[order]
 
 
 def _initial_contact(path):

@@ -126,14 +126,7 @@ class AsperityLaws:
         (Bradley's law itself) with it; below δ̄oc: P̄max plus Hertz (eqs. 16, 18).
         """
         delta_o, mu = np.broadcast_arrays(in_range("delta_o", delta_o), positive("mu", mu))
-        doc, p_max, jump = self.delta_oc(mu), self.p_max(mu), mu >= self.mu_jump
-        attractive = delta_o >= doc
-        far = np.where(attractive, delta_o, doc)  # each branch sees only its own domain
-        near = np.where(attractive, doc, delta_o)
-        scale = np.where(jump, 1.0, p_max / bradley_force(np.where(jump, 1.0, doc)))
-        attraction = scale * bradley_force(far)
-        repulsion = p_max + 2.0 / (3.0 * np.pi) * ((doc - near) / mu) ** 1.5
-        return _out(np.where(attractive, attraction, repulsion))
+        return _out(_force(delta_o, mu, *self._force_constants(mu)))
 
     def area(self, delta_o, *, mu):
         """Contact area Ā(δ̄o) on approach (eqs. 11, 15, 17, 19), broadcast over δ̄o and μ.
@@ -141,9 +134,22 @@ class AsperityLaws:
         Zero above δ̄o*; below it π(δ̄o* − δ̄o) without jump-in, π(ā_c² + δ̄o* − δ̄o) with it.
         """
         delta_o, mu = np.broadcast_arrays(in_range("delta_o", delta_o), positive("mu", mu))
-        d_star = self.delta_o_star(mu)
-        jumped = np.where(mu >= self.mu_jump, self.a_c(mu) ** 2, 0.0)
-        return _out(np.where(delta_o < d_star, np.pi * (jumped + d_star - delta_o), 0.0))
+        return _out(_area(delta_o, *self._area_constants(mu)))
+
+    def _force_constants(self, mu):
+        """(δ̄oc, P̄max, scale of Bradley's law above δ̄oc) at μ (arrays broadcast)."""
+        doc, p_max, jump = self.delta_oc(mu), self.p_max(mu), mu >= self.mu_jump
+        return doc, p_max, np.where(jump, 1.0, p_max / bradley_force(np.where(jump, 1.0, doc)))
+
+    def _area_constants(self, mu):
+        """(δ̄o*, ā_c² of the jump or 0) at μ."""
+        return self.delta_o_star(mu), np.where(mu >= self.mu_jump, self.a_c(mu) ** 2, 0.0)
+
+    def at(self, mu):
+        """The laws at one μ as a fast `LawAtMu` (constants evaluated once, δ̄o unchecked)."""
+        mu = float(positive("mu", mu))
+        force = tuple(float(c) for c in self._force_constants(mu))
+        return LawAtMu(mu, force, tuple(float(c) for c in self._area_constants(mu)))
 
     def events(self, mu):
         """All approach events at Tabor parameter(s) `mu` as a `LawEvents`."""
@@ -156,6 +162,36 @@ class AsperityLaws:
             jump_in=self.jump_in(mu),
             x_oc=self.x_oc(mu),
         )
+
+
+def _force(delta_o, mu, doc, p_max, scale):
+    """Eqs. 9/14 above δ̄oc, 16/18 below; each branch evaluated on its own domain only (the
+    other branch's δ̄o⁻⁸ or negative root never computed)."""
+    attractive = delta_o >= doc
+    far = np.where(attractive, delta_o, doc)
+    near = np.where(attractive, doc, delta_o)
+    repulsion = p_max + 2.0 / (3.0 * np.pi) * ((doc - near) / mu) ** 1.5
+    return np.where(attractive, scale * bradley_force(far), repulsion)
+
+
+def _area(delta_o, d_star, jumped):
+    """Eqs. 11/17 (jumped = 0) and 15/19 (jumped = ā_c²)."""
+    return np.where(delta_o < d_star, np.pi * (jumped + d_star - delta_o), 0.0)
+
+
+@dataclass(frozen=True)
+class LawAtMu:
+    """`AsperityLaws` at one μ: force(δ̄o) and area(δ̄o) for arrays of already valid δ̄o."""
+
+    mu: float
+    force_constants: tuple
+    area_constants: tuple
+
+    def force(self, delta_o):
+        return _force(np.asarray(delta_o, dtype=float), self.mu, *self.force_constants)
+
+    def area(self, delta_o):
+        return _area(np.asarray(delta_o, dtype=float), *self.area_constants)
 
 
 #: The laws with the paper's constants.

@@ -1,0 +1,92 @@
+"""Single-asperity laws for the GW integrator: P̄(δ̄o) and Ā(δ̄o) on approach, with breakpoints.
+
+A law is any object with `mu`, `name`, `breakpoints` (the δ̄o, in ε, where force or area has a
+kink or a jump: δ̄oc, δ̄o*, the jump-in) and vectorised `force(delta)`, `area(delta)` defined for
+every real δ̄o (negative = the asperity presses into the half-space). Two kinds:
+
+- `PaperLaw`: the paper's closed forms (eqs. 2, 7, 9-19) with its constants or refitted ones;
+- `TabulatedLaw`: the approach path of an FE or boundary-integral curve at the same μ, jump
+  included, interpolated piecewise (PCHIP per branch), Bradley's rigid force beyond its first
+  point and a Hertz continuation beyond its last.
+"""
+
+import numpy as np
+from scipy.interpolate import PchipInterpolator
+
+from fem_asperity._checks import positive
+from fem_asperity.laws import PAPER_LAWS
+from fem_asperity.lj import bradley_force
+
+
+class PaperLaw:
+    """The closed-form laws of `fem_asperity.laws` at one μ (`constants`: the paper's by default,
+    or refitted ones)."""
+
+    def __init__(self, mu, constants=PAPER_LAWS, *, name="paper"):
+        self.mu, self.constants, self.name = positive("mu", mu), constants, name
+        self._at = constants.at(mu)
+        self.breakpoints = tuple(sorted({float(constants.delta_oc(mu)),
+                                         float(constants.delta_o_star(mu))}))
+        self.force, self.area = self._at.force, self._at.area
+
+
+class TabulatedLaw:
+    """P̄(δ̄o), Ā(δ̄o) read off an approach path (`fem_asperity.curve.Curve`) at Tabor parameter mu.
+
+    Each branch of the path (between jumps) is interpolated by PCHIP in δ̄o; a jump is a
+    breakpoint, as is δ̄o* (`delta_o_star`, where the area starts). Above the path's first δ̄o
+    the force is Bradley's (the deflection there is below 1e-4 ε at μ ≤ 10 for δ̄o ≥ 40) and the
+    area zero; below its last δ̄o the force continues as Hertz, P̄ = P̄₀ + (2/3π)[((δ_H − δ̄o)/μ)^1.5
+    − ((δ_H − δ̄₀)/μ)^1.5], with δ_H set by the slope at the last point, the area with slope −π.
+    `interpolation_error`: the largest |PCHIP − linear| at mid-points between samples, relative
+    to |P̄max| (an upper estimate of the interpolation error of P̄).
+    """
+
+    def __init__(self, mu, approach, *, delta_o_star=None, name="tabulated", source=""):
+        self.mu, self.name, self.source = positive("mu", mu), name, source
+        order = np.argsort(approach.delta, kind="stable")
+        delta, p, area = (np.asarray(c)[order] for c in (approach.delta, approach.p, approach.area))
+        branch = np.asarray(approach.branch)[order]
+        self._pieces, jumps, mid_errors = [], [], []
+        for b in np.unique(branch):
+            keep = branch == b
+            d, unique = np.unique(delta[keep], return_index=True)
+            if d.size < 2:
+                continue
+            pf, pa = PchipInterpolator(d, p[keep][unique]), PchipInterpolator(d, area[keep][unique])
+            self._pieces.append((d[0], d[-1], pf, pa))
+            mid = 0.5 * (d[1:] + d[:-1])
+            mid_errors.append(np.abs(pf(mid) - np.interp(mid, d, p[keep][unique])))
+            jumps.append(d[0])
+        self._pieces.sort(key=lambda piece: piece[0])
+        bounds = sorted(jumps)[1:] + ([delta_o_star] if delta_o_star is not None else [])
+        self.breakpoints = tuple(sorted(float(b) for b in bounds))
+        self.interpolation_error = float(np.max(np.concatenate(mid_errors)) / np.abs(p).max())
+        lo, hi = self._pieces[0], self._pieces[-1]
+        self._first, self._last = hi[1], lo[0]
+        self._p_last, self._area_last = float(lo[2](lo[0])), float(lo[3](lo[0]))
+        slope = float(lo[2](lo[0], 1))  # dP̄/dδ̄o < 0 at the deepest point
+        self._hertz_gap = (np.pi * abs(slope) * mu**1.5) ** 2  # δ_H − δ̄₀
+
+    def _piecewise(self, delta, column):
+        delta = np.asarray(delta, dtype=float)
+        out = np.zeros(delta.shape)
+        for lo, hi, pf, pa in self._pieces:
+            inside = (delta >= lo) & (delta <= hi)
+            out[inside] = (pf if column == "p" else pa)(delta[inside])
+        return out, delta
+
+    def force(self, delta):
+        out, delta = self._piecewise(delta, "p")
+        above, below = delta > self._first, delta < self._last
+        out[above] = bradley_force(delta[above])
+        depth = self._hertz_gap + self._last - delta[below]
+        out[below] = self._p_last + 2.0 / (3.0 * np.pi) * (
+            (depth / self.mu) ** 1.5 - (self._hertz_gap / self.mu) ** 1.5)
+        return out
+
+    def area(self, delta):
+        out, delta = self._piecewise(delta, "area")
+        below = delta < self._last
+        out[below] = self._area_last + np.pi * (self._last - delta[below])
+        return out
