@@ -38,8 +38,9 @@ class TabulatedLaw:
     the force is Bradley's (the deflection there is below 1e-4 ε at μ ≤ 10 for δ̄o ≥ 40) and the
     area zero; below its last δ̄o the force continues as Hertz, P̄ = P̄₀ + (2/3π)[((δ_H − δ̄o)/μ)^1.5
     − ((δ_H − δ̄₀)/μ)^1.5], with δ_H set by the slope at the last point, the area with slope −π.
-    `interpolation_error`: the largest |PCHIP − linear| at mid-points between samples, relative
-    to |P̄max| (an upper estimate of the interpolation error of P̄).
+    `interpolation_error`: the largest error, relative to max |P̄|, of PCHIP through every other
+    sample at the samples left out: an upper estimate of the error of PCHIP through all of them
+    (twice as dense, so ~8x smaller where the curve is resolved).
     """
 
     def __init__(self, mu, approach, *, delta_o_star=None, name="tabulated", source=""):
@@ -53,15 +54,18 @@ class TabulatedLaw:
             d, unique = np.unique(delta[keep], return_index=True)
             if d.size < 2:
                 continue
-            pf, pa = PchipInterpolator(d, p[keep][unique]), PchipInterpolator(d, area[keep][unique])
+            pb = p[keep][unique]
+            pf, pa = PchipInterpolator(d, pb), PchipInterpolator(d, area[keep][unique])
             self._pieces.append((d[0], d[-1], pf, pa))
-            mid = 0.5 * (d[1:] + d[:-1])
-            mid_errors.append(np.abs(pf(mid) - np.interp(mid, d, p[keep][unique])))
+            if d.size >= 5:  # every other sample left out, then predicted
+                half = PchipInterpolator(d[::2], pb[::2])
+                mid_errors.append(np.abs(half(d[1:-1:2]) - pb[1:-1:2]))
             jumps.append(d[0])
         self._pieces.sort(key=lambda piece: piece[0])
         bounds = sorted(jumps)[1:] + ([delta_o_star] if delta_o_star is not None else [])
         self.breakpoints = tuple(sorted(float(b) for b in bounds))
-        self.interpolation_error = float(np.max(np.concatenate(mid_errors)) / np.abs(p).max())
+        self.interpolation_error = float(np.max(np.concatenate(mid_errors + [[0.0]]))
+                                         / np.abs(p).max())
         lo, hi = self._pieces[0], self._pieces[-1]
         self._first, self._last = hi[1], lo[0]
         self._p_last, self._area_last = float(lo[2](lo[0])), float(lo[3](lo[0]))
