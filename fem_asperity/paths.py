@@ -22,7 +22,8 @@ def refine_force_extrema(surface, trace, *, xtol=1e-9):
     dP̄/ds in the arc length σ ∈ (0, σ₁) along the tangent at k is found by Brent's method, each
     evaluation a converged point (`correct`) and its exact tangent. Sampled at a turn limit of
     0.1 rad, the parabola through three samples alone misplaces P̄off by ~3e-5 at μ = 1.
-    Returns the number of points inserted.
+    Where no equilibrium is found inside the bracket (ripple of a too coarse surface mesh) the
+    samples are left as they are. Returns the number of points inserted.
     """
     inserted = 0
     k = 0
@@ -47,7 +48,10 @@ def refine_force_extrema(surface, trace, *, xtol=1e-9):
             states[sigma] = (w, d, linear)
             return linear.tangent()[2][2]
 
-        sigma = brentq(slope, 0.0, end, xtol=xtol * max(end, 1.0), rtol=1e-12) if end > 0 else None
+        try:
+            sigma = brentq(slope, 0.0, end, xtol=xtol * max(end, 1.0), rtol=1e-12)
+        except (ContinuationError, ValueError):  # no clean extremum here (e.g. ripple)
+            sigma = None
         if sigma is not None and sigma in states and 0.0 < sigma < end:
             w, d, linear = states[sigma]
             trace.insert(k + 1, surface, w, d, linear.stable, surface.force(w, d),

@@ -1,14 +1,16 @@
 """Command lines as a user runs them: `python -m fem_asperity ...` and `python -m validation all`."""
 
 import json
+import os
 import subprocess
 import sys
 
 import pytest
 
 
-def cli(*args, cwd=None):
-    return subprocess.run([sys.executable, "-m", *args], capture_output=True, text=True, cwd=cwd)
+def cli(*args, cwd=None, env=None):
+    return subprocess.run([sys.executable, "-m", *args], capture_output=True, text=True, cwd=cwd,
+                          env=None if env is None else {**os.environ, **env})
 
 
 def test_laws_json_has_exactly_the_documented_keys():
@@ -58,13 +60,20 @@ def test_scales_json():
 
 def test_validation_all_writes_its_files(tmp_path):
     out = tmp_path / "out"
-    done = cli("validation", "all", "--out", str(out), "--json")
+    done = cli("validation", "all", "--out", str(out), "--json", "--compare-mu", "1",
+               "--accuracy", "draft", env={"ADHESION_CACHE": str(tmp_path / "cache")})
     assert done.returncode == 0, done.stderr
     summary = json.loads(done.stdout)
-    assert sorted(p.name for p in out.iterdir()) == ["paper_laws.json", "paper_laws.png", "report.md"]
+    assert sorted(p.name for p in out.iterdir()) == [
+        "law_comparison.png", "paper_laws.json", "paper_laws.png", "report.md",
+        "rough_surface.json", "rough_surface.md", "rough_surface.png"]
     assert summary["not_yet_available"]  # says what is not there yet
+    assert {r["claim"] for r in summary["rough_surface"]} >= {"F̄max → 0.75 as μ → ∞"}
+    assert summary["law_comparison"][0]["mu"] == 1.0
     report = (out / "report.md").read_text()
     assert "Not yet judged" in report and "| holds |" in report
+    assert "Paper's law against the solved law" in report
+    assert (tmp_path / "cache" / "bem-draft-mu1" / "result.json").exists()  # stored for reuse
     table = json.loads((out / "paper_laws.json").read_text())
     assert len(table["rows"]) == 101 and table["constants"]["c_off"] == 1.98
     assert (out / "paper_laws.png").read_bytes()[:4] == b"\x89PNG"

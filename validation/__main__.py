@@ -1,4 +1,4 @@
-"""Command line of validation: `python -m validation all --out DIR` (see --help)."""
+"""Command line of validation: `python -m validation all|rough-surface --out DIR` (see --help)."""
 
 import json
 import sys
@@ -13,12 +13,23 @@ from fem_asperity._io import save_figure, write_atomic
 from .closed_forms import closed_form_checks
 from .law_figure import law_table, plot_laws
 from .report import PENDING, render
+from .rough_surface import COMPARISON_MU
+from .rough_surface import run as run_rough_surface
+from .rough_surface import section as rough_section
 
 PROG = "python -m validation"
 FILES = (
     ("paper_laws.json", "the paper-law events over 101 mu in [0.01, 100], with Maugis-Dugdale"),
     ("paper_laws.png", "figure of those laws beside JKR, DMT and Maugis-Dugdale"),
-    ("report.md", "closed-form checks with verdicts, and what is not yet judged"),
+    ("report.md", "closed-form checks with verdicts, rough-surface claims, and what is not yet "
+                  "judged"),
+)
+ROUGH_FILES = (
+    ("rough_surface.json", "Figs. 9-13 data (paper's laws, GW), xi collapse, omega sensitivity, "
+                           "verdicts, paper law vs solved law"),
+    ("rough_surface.png", "Figs. 9-13 and the xi collapse"),
+    ("law_comparison.png", "F and S from the paper's law and from the BEM curve, sigma = 2 nm"),
+    ("rough_surface.md", "the rough-surface section of the report on its own"),
 )
 
 
@@ -28,20 +39,35 @@ def build_parser():
     everything = commands.add_parser("all", help="regenerate the figures and the report")
     everything.add_argument("--out", type=Path, default=Path("out"), help="output folder")
     everything.add_argument("--json", action="store_true", help="print a JSON summary")
+    rough = commands.add_parser("rough-surface", help="Figs. 9-13, verdicts, paper vs solved law")
+    rough.add_argument("--out", type=Path, default=Path("out"), help="output folder")
+    rough.add_argument("--json", action="store_true", help="print a JSON summary")
+    for command in (everything, rough):
+        command.add_argument("--compare-mu", type=float, nargs="+", default=list(COMPARISON_MU),
+                             help="mu of the paper-law vs BEM-law check (default: %(default)s)")
+        command.add_argument("--accuracy", choices=("draft", "default", "fine"),
+                             default="default", help="accuracy of the BEM curves (default)")
     return parser
 
 
-STEPS = 3
+def _step(i, text, total=5):
+    print(f"[{i}/{total}] {text}", file=sys.stderr, flush=True)
 
 
-def _step(i, text):
-    print(f"[{i}/{STEPS}] {text}", file=sys.stderr, flush=True)
+def _rough(out, args, first_step, total):
+    steps = iter(range(first_step, first_step + 2))
+    return run_rough_surface(out, compare_mu=args.compare_mu, accuracy=args.accuracy,
+                             step=lambda text: _step(next(steps), text, total))
 
 
-def run_all(out, command):
-    """Write every output that exists so far into `out`; return a summary dict."""
+def _check_out(out):
     if out.exists() and not out.is_dir():
         raise InputError(f"--out must be a folder; {out} is a file")
+
+
+def run_all(out, command, args):
+    """Write every output that exists so far into `out`; return a summary dict."""
+    _check_out(out)
     _step(1, "paper laws over mu (closed forms, Maugis-Dugdale)")
     rows = law_table()
     table = {"method": "closed-form laws with the paper's constants (exact evaluation)",
@@ -49,18 +75,31 @@ def run_all(out, command):
     write_atomic(out / "paper_laws.json", json.dumps(table, indent=1, allow_nan=False))
     _step(2, "figure of the laws")
     save_figure(plot_laws(rows), out / "paper_laws.png")
-    _step(3, "closed-form checks and report")
+    _step(3, "closed-form checks")
     checks = closed_form_checks()
-    write_atomic(out / "report.md", render(checks, FILES, command))
-    return {"out": str(out), "files": [name for name, _ in FILES],
-            "checks": [c.as_dict() for c in checks],
+    rough = _rough(out, args, 4, 5)
+    write_atomic(out / "report.md", render(checks, FILES + ROUGH_FILES, command,
+                                           rough_section(rough)))
+    return {"out": str(out), "files": [name for name, _ in FILES + ROUGH_FILES],
+            "checks": [c.as_dict() for c in checks], "rough_surface": rough["verdicts"],
+            "law_comparison": rough["law_comparison"],
             "not_yet_available": [{"item": i, "needs": n} for i, n in PENDING]}
 
 
 def main(argv=None):
     args = build_parser().parse_args(argv)
     command = " ".join([PROG] + (sys.argv[1:] if argv is None else list(argv)))
-    summary = run_all(args.out, command)
+    if args.command == "rough-surface":
+        _check_out(args.out)
+        rough = _rough(args.out, args, 1, 2)
+        summary = {"out": str(args.out), "files": [name for name, _ in ROUGH_FILES],
+                   "rough_surface": rough["verdicts"], "law_comparison": rough["law_comparison"]}
+        if args.json:
+            dump_json(summary)
+        else:
+            print(f"wrote {', '.join(summary['files'])} to {args.out}/")
+        return 0
+    summary = run_all(args.out, command, args)
     if args.json:
         dump_json(summary)
     else:

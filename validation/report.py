@@ -12,11 +12,11 @@ PENDING = (
     ("Fig. 7 / eqs. 16-19: Hertz-like force and area after contact", "FE sweep over mu (verification stage)"),
     ("eqs. 15 -> 2: the force lands on P_off at jump-in", "FE sweep over mu (verification stage)"),
     ("refit of the eight fit constants from the FE", "FE sweep over mu (verification stage)"),
-    ("Figs. 9-13: GW force, area and strength of adhesion", "GW integrator (later stage)"),
+    ("Figs. 9-11 with refitted constants (law 'refit')", "refit from the FE (verification stage)"),
 )
 
 
-def render(checks, files, command):
+def render(checks, files, command, rough=""):
     """The report as Markdown text."""
     now = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     lines = [
@@ -37,6 +37,7 @@ def render(checks, files, command):
         tol = "-" if c.tol is None else f"{c.tol:g}"
         lines.append(f"| {c.claim} | {c.source} | {c.found:.6g} | {c.expected:.6g} | {tol} "
                      f"| {c.verdict} | {c.how} |")
+    lines += ["", rough] if rough else []
     lines += ["", "## Not yet judged", "", "| item | needs |", "|---|---|"]
     lines += [f"| {item} | {needs} |" for item, needs in PENDING]
     lines += ["", "## Files", ""] + [f"- `{name}`: {what}" for name, what in files]
