@@ -2,8 +2,8 @@
 
 For each μ and method, solves one approach + retraction per preset (no error estimate, so the wall
 time is that of one curve) and reports the relative error of P̄off, δ̄oc, ā_c, x̄oc against a
-reference: the boundary-integral solver with elements half the `fine` size (`fine` itself above
---reference-mu-max) and a turn limit of 0.025 rad. Then, per μ, the wall-time ratio FE/BEM at equal accuracy: the cheapest preset of each
+reference: the boundary-integral solver with elements half the `fine` size and a turn limit of
+0.025 rad (above --reference-mu-max, the BEM `fine` run itself). Then, per μ, the wall-time ratio FE/BEM at equal accuracy: the cheapest preset of each
 method whose P̄off error is within 1e-3, and within 1e-4.
 
     python benchmarks/curves.py [--mu 0.2 1 5] [--methods fem bem] [--presets draft default fine]
@@ -42,11 +42,14 @@ def run(mu, method, name, disc):
     return row
 
 
-def reference(mu, halve):
-    """BEM `fine` with a turn limit of 0.025 rad, and elements halved if `halve`."""
+def reference(mu, block, halve):
+    """BEM with elements half the `fine` size and a turn limit of 0.025 rad if `halve`, else
+    the BEM `fine` row of `block` itself (a finer one costs hours above μ ≈ 2)."""
+    if not halve:
+        fine = next(r for r in block if r["method"] == "bem" and r["preset"] == "fine")
+        return dict(fine, preset="reference (= bem fine)")
     fine = discretisation(mu, "fine", method="bem")
-    disc = replace(fine, h_surface=fine.h_surface / (2 if halve else 1),
-                   trace=replace(fine.trace, turn=0.025))
+    disc = replace(fine, h_surface=fine.h_surface / 2, trace=replace(fine.trace, turn=0.025))
     return run(mu, "bem", "reference", disc)
 
 
@@ -65,7 +68,7 @@ def main():
     parser.add_argument("--skip", nargs="*", default=[], metavar="METHOD:MU:PRESET",
                         help="runs to leave out, e.g. fem:5:fine")
     parser.add_argument("--reference-mu-max", type=float, default=2.0,
-                        help="above this μ the reference keeps the `fine` element size")
+                        help="above this μ the reference is the BEM `fine` run")
     parser.add_argument("--out", default="out/bench")
     args = parser.parse_args()
     skip = {tuple(s.split(":")) for s in args.skip}
@@ -74,7 +77,7 @@ def main():
         block = [run(mu, m, name, discretisation(mu, name, method=m))
                  for m in args.methods for name in args.presets
                  if (m, f"{mu:g}", name) not in skip]
-        ref = reference(mu, mu <= args.reference_mu_max)
+        ref = reference(mu, block, mu <= args.reference_mu_max)
         for row in block + [ref]:
             row["rel_error"] = {k: (abs(row[k] / ref[k] - 1.0) if row[k] is not None else None)
                                 for k in KEYS}

@@ -107,7 +107,10 @@ def main(argv=None):
         print(f"wrote {', '.join(summary['files'])} to {args.out}/")
         print(f"closed-form checks: {verdicts.count('holds')} hold, {verdicts.count('fails')} fail, "
               f"{verdicts.count('note')} notes (see report.md)")
-        print(f"not yet available: {len(PENDING)} items awaiting the FE model and GW integrator")
+        rough = [r["verdict"] for r in summary["rough_surface"]]
+        print(f"rough-surface claims: {rough.count('holds')} hold, {rough.count('fails')} fail, "
+              f"{rough.count('note')} notes (see report.md)")
+        print(f"not yet available: {len(PENDING)} items awaiting the verification stage")
     return 0
 
 
