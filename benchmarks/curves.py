@@ -24,13 +24,21 @@ from pathlib import Path
 from fem_asperity._io import write_atomic
 from fem_asperity.accuracy import METHODS, PRESETS, discretisation
 from fem_asperity.asperity import solve_discretised
+from fem_asperity.continuation import ContinuationError
 
 KEYS = ("p_off", "delta_oc", "a_c", "x_oc")
 
 
 def run(mu, method, name, disc):
     start = time.perf_counter()
-    result = solve_discretised(mu, disc)
+    try:
+        result = solve_discretised(mu, disc)
+    except ContinuationError as exc:
+        print(f"mu={mu:g} {method} {name}: failed: {exc}", file=sys.stderr, flush=True)
+        return {"mu": mu, "method": method, "preset": name, "h_surface": disc.h_surface,
+                "dofs": None, "surface_nodes": None, "points": None, "folds": None,
+                "newton_iterations": None, "wall_s": time.perf_counter() - start,
+                **{k: None for k in KEYS}, "failed": str(exc)}
     ev = result.events.records()
     row = {"mu": mu, "method": method, "preset": name, "h_surface": disc.h_surface,
            "dofs": result.dofs, "surface_nodes": result.surface_nodes, "points": result.points,
@@ -56,7 +64,7 @@ def reference(mu, block, halve):
 def cheapest(rows, method, tol):
     """Wall time of the cheapest preset of `method` with P̄off within `tol` (None if none)."""
     ok = [r["wall_s"] for r in rows if r["method"] == method and r["preset"] in PRESETS
-          and r["rel_error"]["p_off"] <= tol]
+          and r["rel_error"]["p_off"] is not None and r["rel_error"]["p_off"] <= tol]
     return min(ok) if ok else None
 
 
@@ -79,7 +87,8 @@ def main():
                  if (m, f"{mu:g}", name) not in skip]
         ref = reference(mu, block, mu <= args.reference_mu_max)
         for row in block + [ref]:
-            row["rel_error"] = {k: (abs(row[k] / ref[k] - 1.0) if row[k] is not None else None)
+            row["rel_error"] = {k: (abs(row[k] / ref[k] - 1.0)
+                                    if row[k] is not None and ref[k] is not None else None)
                                 for k in KEYS}
         rows += block + [ref]
         for tol in (1e-3, 1e-4):
@@ -99,7 +108,7 @@ def main():
                           for k in KEYS)
         lines.append(f"| {r['mu']:g} | {r['method']} | {r['preset']} | {r['h_surface']:.4g} | "
                      f"{r['dofs']} | {r['surface_nodes']} | {r['points']} | {r['folds']} | "
-                     f"{r['wall_s']:.1f} | {errs} |")
+                     f"{r['wall_s']:.1f} | {errs} |" + (" failed |" if "failed" in r else ""))
     lines += ["", "| mu | P̄off within | FE s | BEM s | FE/BEM |", "|---|---|---|---|---|"]
     for q in ratios:
         cells = ["-" if q[k] is None else f"{q[k]:.1f}" for k in ("fem_s", "bem_s", "ratio")]

@@ -87,8 +87,8 @@ def _fold(curve, i, j, descending):
 
 
 def _landing(surface, trace, curve, order, start, delta):
-    """First stable segment after position `start` of `order` that crosses δ̄o = `delta`;
-    returns (position in order after which to continue, landing values)."""
+    """First stable segment after position `start` of `order` that crosses δ̄o = `delta` and on
+    which Newton converges; returns (position in order after which to continue, landing values)."""
     for pos in range(start, len(order) - 1):
         a, b = order[pos], order[pos + 1]
         if not (curve.stable[a] and curve.stable[b]):
@@ -100,13 +100,14 @@ def _landing(surface, trace, curve, order, start, delta):
         guess = (1.0 - t) * trace.states[a] + t * trace.states[b]
         solved = correct(surface, guess, delta, np.array([0.0, 1.0, 0.0]),
                          np.array([0.0, delta, 0.0]), 0.0)
-        if solved is None:
-            raise ContinuationError(f"the landing at δ = {delta:.6g} did not converge")
+        if solved is None:  # e.g. a rippled segment: try the next stable crossing
+            continue
         w, d, _ = solved
         area, radius = surface.contact(w, d)
         return pos + 1, dict(delta=d, x=surface.centre_gap(w, d), p=surface.force(w, d),
                              area=area, a_c=radius)
-    raise ContinuationError(f"no stable branch to land on at δ = {delta:.6g}")
+    raise ContinuationError(f"no stable branch to land on at δ = {delta:.6g} (or Newton failed "
+                            "on each)")
 
 
 def walk(surface, trace, curve, order):

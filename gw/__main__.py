@@ -6,6 +6,7 @@ import numpy as np
 
 from fem_asperity._cli import Parser, ProgressBar, dump_json, print_table, run
 from fem_asperity.accuracy import PRESETS
+from fem_asperity.refit import stored_refit
 from fem_asperity.scales import Scales
 
 from .integrate import strength, totals
@@ -27,9 +28,11 @@ def _common(parser):
     parser.add_argument("--density", type=float, help="asperity density eta [1/m^2]")
     parser.add_argument("--estar", type=float, help="effective modulus E* [Pa]")
     parser.add_argument("--work-of-adhesion", type=float, help="work of adhesion [J/m^2]")
-    parser.add_argument("--law", choices=("paper", "fem", "bem"), default="paper",
-                        help="paper: the paper's closed forms; fem, bem: the approach curve of "
-                             "that solver at this mu, solved once and stored (default: paper)")
+    parser.add_argument("--law", choices=("paper", "refit", "fem", "bem"), default="paper",
+                        help="paper: the paper's closed forms; refit: the same forms with the "
+                             "constants refitted from BEM curves (stored); fem, bem: the approach "
+                             "curve of that solver at this mu, solved once and stored "
+                             "(default: paper)")
     parser.add_argument("--accuracy", choices=tuple(PRESETS), default="default",
                         help="resolution of a solved law (default: %(default)s)")
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
@@ -70,6 +73,10 @@ def _inputs(args, parser):
 def _law(args, mu):
     if args.law == "paper":
         return PaperLaw(mu)
+    if args.law == "refit":
+        print(f"{PROG}: refitting the constants from stored BEM curves (first time: ~20 s)",
+              file=sys.stderr)
+        return PaperLaw(mu, stored_refit(accuracy=args.accuracy).laws, name="refit")
     bar = ProgressBar(f"{args.law.upper()} curve mu={mu:g} (stored for next time)")
     law = solved_law(mu, method=args.law, accuracy=args.accuracy, progress=bar)
     if bar.shown >= 0:  # solved now, not read from the store

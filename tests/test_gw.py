@@ -116,7 +116,7 @@ def test_cli_fmax_and_curve_json():
     ["fmax", "--mu", "1"], ["fmax", "--mu", "-1", "--zeta", "1"],
     ["fmax", "--mu", "1", "--zeta", "1", "--sigma-r-eta", "0.01"],
     ["fmax", "--mu", "1", "--zeta", "1", "--omega", "0.5", "--sigma-r-eta", "0.05"],
-    ["fmax", "--mu", "1", "--zeta", "1", "--law", "refit"], ["fmax", "--sigma", "1e-9"],
+    ["fmax", "--mu", "1", "--zeta", "1", "--law", "fitted"], ["fmax", "--sigma", "1e-9"],
     ["curve", "--mu", "1", "--zeta", "1", "--points", "1"],
 ])
 def test_cli_bad_input_is_one_line_exit_2(args):

@@ -11,8 +11,8 @@ PENDING = (
     ("Fig. 6 (caption lost) / eqs. 12-13: jump-in gap and separation", "FE sweep over mu (verification stage)"),
     ("Fig. 7 / eqs. 16-19: Hertz-like force and area after contact", "FE sweep over mu (verification stage)"),
     ("eqs. 15 -> 2: the force lands on P_off at jump-in", "FE sweep over mu (verification stage)"),
-    ("refit of the eight fit constants from the FE", "FE sweep over mu (verification stage)"),
-    ("Figs. 9-11 with refitted constants (law 'refit')", "refit from the FE (verification stage)"),
+    ("refit of the eight constants against the FE itself (here: against the BEM, which agrees "
+     "with the FE within its error estimate)", "FE sweep over mu (verification stage)"),
 )
 
 
