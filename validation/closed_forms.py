@@ -60,7 +60,7 @@ def closed_form_checks(laws=PAPER_LAWS):
               "eq. 6b, eq. A9", laws.a_c(1e6) / np.sqrt(1e6),
               reference.jkr_compressive_radius(mu=1.0), None, "a_c / mu^1/2 at mu = 1e6"),
         Check("eq. 2 (Wu's LJ fit) vs Maugis-Dugdale pull-off (lambda = 1.157 mu)", "eq. 2",
-              md_gap, 0.0, None, "max |difference| over 41 mu in [0.01, 100]"),
+              md_gap, 0.0, None, "max abs(difference) over 41 mu in [0.01, 100]"),
         Check("delta_oc continuous at mu = 0.5 (eq. 7 below, eq. 13 at)", "eqs. 7, 13",
               laws.delta_oc(below), laws.delta_oc(at), 1e-3, "both sides of mu_jump"),
         Check("delta_o* continuous at mu = 0.5 (eq. 10 below, eq. 13 at)", "eqs. 10, 13",

@@ -127,7 +127,7 @@ def _falls(x, series, xname, label):
         if drops.size == 0:
             parts.append(f"{label} = {key}: monotone")
         for i in drops:
-            parts.append(f"{label} = {key}: |F̄max| {abs(values[i]):.4g} → "
+            parts.append(f"{label} = {key}: F̄max {abs(values[i]):.4g} → "
                          f"{abs(values[i + 1]):.4g} from {xname} = {x[i]:.3g} to {x[i + 1]:.3g}")
     return "; ".join(parts)
 
