@@ -88,6 +88,13 @@ def test_validation_all_unwritable_output_is_one_line_and_writes_nothing(tmp_pat
     assert sorted(p.name for p in tmp_path.iterdir()) == ["taken"]
 
 
+def test_validation_bad_compare_mu_is_one_line_and_writes_nothing(tmp_path):
+    done = cli("validation", "rough-surface", "--out", str(tmp_path / "out"), "--compare-mu",
+               "1", "-2")
+    assert done.returncode == 2 and len(done.stderr.strip().splitlines()) == 1, done.stderr
+    assert not (tmp_path / "out").exists()
+
+
 def test_validation_all_refuses_a_file_as_output_folder(tmp_path):
     target = tmp_path / "taken"
     target.write_text("keep me")

@@ -6,6 +6,7 @@ from dataclasses import asdict
 from pathlib import Path
 
 from fem_asperity import InputError
+from fem_asperity._checks import positive
 from fem_asperity._cli import Parser, dump_json, run
 from fem_asperity.laws import PAPER_LAWS
 
@@ -88,6 +89,7 @@ def run_all(out, command, args):
 
 def main(argv=None):
     args = build_parser().parse_args(argv)
+    positive("--compare-mu", args.compare_mu)  # before anything is written
     command = " ".join([PROG] + (sys.argv[1:] if argv is None else list(argv)))
     if args.command == "rough-surface":
         _check_out(args.out)
