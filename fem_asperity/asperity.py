@@ -1,13 +1,13 @@
 """The single-asperity curve: `solve_curve(mu, ...)` → `CurveResult` (curve, events, provenance).
 
-Two methods for the elastic solid, behind the same surface problem and path:
-'fem': axisymmetric P2 finite elements of the (layered) half-space (scikit-fem), condensed onto
-the surface; 'bem': the Boussinesq boundary integral of the homogeneous half-space on a radial
-grid (`bem`), no mesh and no truncation of the solid. Then: LJ 9-3 traction on the surface as a nonlinear boundary form with its consistent
-tangent; pseudo-arc-length continuation of the whole equilibrium curve; approach and retraction
-under δ̄o control read off it, jumps included (see `paths`). The error estimate is the change of
-each event when the surface elements are twice as large.
-"""
+Two methods for the elastic solid behind the same surface problem and path. 'fem': axisymmetric
+P2 finite elements of the (layered) half-space (scikit-fem), condensed onto the surface. 'bem':
+the Boussinesq integral of the homogeneous half-space on a radial grid (`bem`), no mesh and no
+truncation of the solid. Then, for both: LJ 9-3 traction on the surface as a nonlinear boundary
+form with its consistent tangent; pseudo-arc-length continuation of the whole equilibrium curve;
+exact extrema of P̄; approach and retraction under δ̄o control read off it, jumps included (see
+`paths`). The error estimate is the change of each event on a coarser discretisation
+(`accuracy.Discretisation.coarsened`)."""
 
 import time
 from dataclasses import dataclass, field, replace
@@ -84,7 +84,7 @@ class CurveResult:
         }
 
 
-def _half_space(disc, solid):
+def elastic_surface(disc, solid=Solid()):
     """The elastic solid's surface operators for the discretisation's method."""
     if disc.method == "bem":
         return BoussinesqSurface(radial_grid(h=disc.h_surface, r_fine=disc.r_fine,
@@ -98,7 +98,7 @@ def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, progress=No
     """One curve on the given `accuracy.Discretisation` (no error estimate, inputs unchecked
     beyond the discretisation's own): for studies that set the resolution themselves."""
     start = time.perf_counter()
-    half_space = _half_space(disc, solid)
+    half_space = elastic_surface(disc, solid)
     surface = LJSurface(half_space, mu, radius_ratio=radius_ratio)
     traced = trace(surface, disc.trace, progress=progress)
     refine_force_extrema(surface, traced)

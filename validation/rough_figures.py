@@ -1,0 +1,76 @@
+"""Figures of the rough-surface stage: Figs. 9-13 with the ξ collapse, and paper vs solved law."""
+
+import numpy as np
+
+from gw.integrate import totals
+from gw.laws import PaperLaw
+from gw.surface import RoughSurface
+from gw.tables import solved_law
+
+from .rough_surface import EPS_NM
+
+
+def plot(data, spread):
+    """Figs. 9-13 and the ξ collapse as one 3×3 figure; returns the matplotlib Figure."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(3, 3, figsize=(15, 12))
+    d = data["fig9"]["d"]
+    for mu, c in data["fig9"]["curves"].items():
+        ax[0, 0].plot(d, c["F"], label=f"μ = {mu}")
+        ax[0, 1].plot(d, c["S"], label=f"μ = {mu}")
+    ax[0, 0].set(xlabel="d / σ", ylabel="F̄", title="Fig. 9a: σ = 2 nm")
+    ax[0, 1].set(xlabel="d / σ", ylabel="S̄", title="Fig. 9b: σ = 2 nm", yscale="log",
+                 ylim=(1e-4, None))
+    inset = ax[0, 2]
+    inset.plot(d, data["fig9"]["curves"]["10"]["F"])
+    inset.set(xlabel="d / σ", ylabel="F̄", title="Fig. 9a inset: μ = 10")
+    panels = [(ax[1, 0], "fig10", "sigma_nm", "σ [nm]", "Fig. 10: μ =", "log"),
+              (ax[1, 1], "fig11", "mu", "μ", "Fig. 11: σ [nm] =", "log"),
+              (ax[1, 2], "fig12a", "sigma_nm", "σ [nm]", "Fig. 12a: θ =", "linear"),
+              (ax[2, 0], "fig12b", "theta", "θ", "Fig. 12b: σ [nm] =", "log"),
+              (ax[2, 1], "fig13", "mu", "μ", "Fig. 13: ζ =", "log")]
+    for axis, key, x, xlabel, title, scale in panels:
+        for label, values in data[key]["f_max"].items():
+            axis.plot(data[key][x], values, label=label)
+        axis.set(xlabel=xlabel, ylabel="F̄max", title=title, xscale=scale)
+    xi = np.asarray(spread["zeta"]) / (np.asarray(spread["mu"]) + 1.0)
+    sc = ax[2, 2].scatter(xi, spread["f_max"], c=np.log10(spread["mu"]), s=8, cmap="viridis")
+    fig.colorbar(sc, ax=ax[2, 2], label="log10 μ")
+    ax[2, 2].set(xlabel="ξ = σ/((μ+1)ε)", ylabel="F̄max", xscale="log", title="ξ collapse")
+    for axis in ax.flat:
+        axis.grid(alpha=0.3)
+        if axis.get_legend_handles_labels()[0]:
+            axis.legend(fontsize=7)
+    fig.suptitle(f"Paper's laws on a GW surface (ε = {EPS_NM} nm, ω = 1)")
+    fig.tight_layout()
+    return fig
+
+
+def plot_comparison(mus, *, method="bem", accuracy="default", sigma=2.0):
+    """F̄ and S̄ vs d̃ with the paper law (dashed) and the solved law (solid) at each μ."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.5))
+    d = np.linspace(0.0, 8.0, 161)
+    surface = RoughSurface(sigma / EPS_NM)
+    for k, mu in enumerate(mus):
+        color = f"C{k}"
+        for law, style in ((PaperLaw(mu), "--"), (solved_law(mu, method=method,
+                                                             accuracy=accuracy), "-")):
+            force, area = totals(law, surface, d)
+            a.plot(d, force, style, color=color, label=f"μ = {mu:g} {law.name}")
+            b.plot(d, area, style, color=color)
+    a.set(xlabel="d / σ", ylabel="F̄", title=f"σ = {sigma:g} nm: paper law (--) vs {method}")
+    b.set(xlabel="d / σ", ylabel="S̄", yscale="log", ylim=(1e-4, None))
+    a.legend(fontsize=7, ncol=2)
+    for axis in (a, b):
+        axis.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
