@@ -60,14 +60,17 @@ def plot_comparison(mus, *, method="bem", accuracy="default", sigma=2.0):
     fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.5))
     d = np.linspace(0.0, 8.0, 161)
     surface = RoughSurface(sigma / EPS_NM)
+    lowest = 0.0
     for k, mu in enumerate(mus):
         color = f"C{k}"
         for law, style in ((PaperLaw(mu), "--"), (solved_law(mu, method=method,
                                                              accuracy=accuracy), "-")):
             force, area = totals(law, surface, d)
+            lowest = min(lowest, force.min())
             a.plot(d, force, style, color=color, label=f"μ = {mu:g} {law.name}")
             b.plot(d, area, style, color=color)
-    a.set(xlabel="d / σ", ylabel="F̄", title=f"σ = {sigma:g} nm: paper law (--) vs {method}")
+    a.set(xlabel="d / σ", ylabel="F̄ (repulsive part clipped)", ylim=(1.15 * lowest, -0.6 * lowest),
+          title=f"σ = {sigma:g} nm: paper law (--) vs {method}")
     b.set(xlabel="d / σ", ylabel="S̄", yscale="log", ylim=(1e-4, None))
     a.legend(fontsize=7, ncol=2)
     for axis in (a, b):
