@@ -2,6 +2,7 @@
 
 import contextlib
 import os
+import shutil
 import tempfile
 from pathlib import Path
 
@@ -28,6 +29,23 @@ def atomic_path(path):
         if os.path.exists(tmp):
             os.unlink(tmp)
         raise
+
+
+@contextlib.contextmanager
+def staged_folder(folder):
+    """Yield a temporary folder beside `folder`; on success every file written into it is moved
+    into `folder` (each by an atomic rename), on failure none is: a run that fails halfway leaves
+    `folder` as it was."""
+    folder = Path(folder)
+    folder.parent.mkdir(parents=True, exist_ok=True)
+    stage = Path(tempfile.mkdtemp(dir=folder.parent, prefix=f".{folder.name}."))
+    try:
+        yield stage
+        folder.mkdir(exist_ok=True)
+        for item in stage.iterdir():
+            os.replace(item, folder / item.name)
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
 
 
 def write_atomic(path, data):

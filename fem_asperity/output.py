@@ -1,7 +1,7 @@
-"""Files of one FE curve: CSV curves, a force/contact figure, and VTU + PNG fields at chosen states.
+"""Files of one curve: CSV curves, a force/contact figure, and (FE) VTU + PNG fields at chosen states.
 
 Field units: coordinates r, z in √(Rε); displacement in ε; σ_zz in Δγ/ε (the LJ traction unit,
-so σ_zz ≈ −p̄ on the surface). Every file is written atomically.
+so σ_zz ≈ −p̄ on the surface). `write_all` writes all files or none (a staging folder).
 """
 
 import json
@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._io import atomic_path, save_figure, write_atomic
+from ._io import atomic_path, save_figure, staged_folder, write_atomic
 from .lj import traction
 
 
@@ -44,7 +44,7 @@ def plot_curve(result, path):
         ax.grid(alpha=0.3)
     axes[0].set_ylim(-1.1, max(0.2, min(1.2, float(np.max(eq.p)))))
     axes[0].legend()
-    fig.suptitle(f"FE, μ = {result.mu:g}, accuracy '{result.accuracy}'")
+    fig.suptitle(f"{result.method.upper()}, μ = {result.mu:g}, accuracy '{result.accuracy}'")
     return save_figure(fig, path)
 
 
@@ -114,12 +114,16 @@ def _render(points, triangles, u3, sigma, path, title, window):
 
 def write_all(result, folder):
     """Curves, the curve figure and, for the FE (the BEM has no bulk mesh), the fields at P̄max
-    (approach) and P̄off (retraction)."""
+    (approach) and P̄off (retraction). All or nothing: the files are written into a staging
+    folder and moved into `folder` only when every one of them is complete."""
     folder = Path(folder)
-    paths = write_curves(result, folder) + [plot_curve(result, folder / "curve.png")]
-    if result.method != "fem":
-        return paths
-    ev, eq = result.events, result.equilibrium
-    for label, delta, p in (("p_max", ev.delta_oc, ev.p_max), ("p_off", ev.delta_off, ev.p_off)):
-        paths += write_fields(result, folder, label, _state_index(eq, delta, p))
-    return paths
+    with staged_folder(folder) as stage:
+        names = [p.name for p in write_curves(result, stage)]
+        names.append(plot_curve(result, stage / "curve.png").name)
+        if result.method == "fem":
+            ev, eq = result.events, result.equilibrium
+            for label, delta, p in (("p_max", ev.delta_oc, ev.p_max),
+                                    ("p_off", ev.delta_off, ev.p_off)):
+                names += [p.name for p in write_fields(result, stage, label,
+                                                       _state_index(eq, delta, p))]
+    return [folder / name for name in names]

@@ -45,3 +45,28 @@ def test_fold_margin_changes_sign_between_069_and_070(method):
     assert fold_margin(0.5, method=method, accuracy="draft") < -0.2
     assert fold_margin(0.69, method=method, accuracy="draft") < 0.0
     assert fold_margin(0.70, method=method, accuracy="draft") > 0.0
+
+
+def test_out_files_are_all_or_nothing(tmp_path, monkeypatch):
+    """A failure in the last file (the figure) leaves the output folder as it was."""
+    from fem_asperity import output
+
+    result = solve_curve(0.3, method="bem", accuracy="draft", error_estimate=False)
+    target = tmp_path / "out"
+    target.mkdir()
+    (target / "approach.csv").write_text("old")
+
+    def broken(*_args):
+        raise OSError("disk full")
+
+    monkeypatch.setattr(output, "plot_curve", broken)
+    with pytest.raises(OSError):
+        output.write_all(result, target)
+    assert [p.name for p in tmp_path.iterdir()] == ["out"]  # no staging folder left
+    assert [p.name for p in target.iterdir()] == ["approach.csv"]
+    assert (target / "approach.csv").read_text() == "old"
+    monkeypatch.undo()
+    names = {p.name for p in output.write_all(result, target)}
+    assert names == {"approach.csv", "retraction.csv", "equilibrium.csv", "result.json",
+                     "curve.png"}
+    assert (target / "approach.csv").read_text().startswith("delta_o,")
