@@ -48,6 +48,9 @@ def build_parser():
                             "homogeneous half-space, faster (default: %(default)s)")
     curve.add_argument("--accuracy", choices=tuple(PRESETS), default="default",
                        help="mesh and step resolution (default: %(default)s)")
+    curve.add_argument("--tolerance", type=float,
+                       help="instead of a preset: refine from draft until P_max and P_off "
+                            "change by at most this (relative) between two levels")
     curve.add_argument("--layer-thickness", type=float,
                        help="layer thickness t / sqrt(R eps) (omit: homogeneous half-space)")
     curve.add_argument("--layer-modulus-ratio", type=float, default=1.0,
@@ -107,7 +110,7 @@ def _scales(args, parser):
 
 
 def _curve(args, parser):
-    from .asperity import solve_curve
+    from .asperity import solve_curve, solve_to_tolerance
     from .continuation import ContinuationError
     from .elastic import Solid
     from .output import write_all
@@ -121,13 +124,18 @@ def _curve(args, parser):
         parser.error("curve: --method bem models a homogeneous half-space; use fem for a layer")
     bar = ProgressBar(f"{args.method.upper()} curve mu={args.mu:g}")
     try:
-        result = solve_curve(args.mu, method=args.method, accuracy=args.accuracy, solid=solid,
-                             error_estimate=not args.no_error_estimate, progress=bar)
+        if args.tolerance is not None:
+            result = solve_to_tolerance(args.mu, args.tolerance, method=args.method,
+                                        solid=solid, progress=bar)
+        else:
+            result = solve_curve(args.mu, method=args.method, accuracy=args.accuracy,
+                                 solid=solid, error_estimate=not args.no_error_estimate,
+                                 progress=bar)
     except ContinuationError as exc:
         print(f"{PROG}: continuation failed: {exc}", file=sys.stderr)
         return 1
     bar.close()
-    if "ripple" in result.message:
+    if "ripple" in result.message or "NOT met" in result.message:
         print(f"warning: {result.message}", file=sys.stderr)
     if args.out:
         write_all(result, args.out)

@@ -65,6 +65,12 @@ class Discretisation:
                        grading=min(1.0, self.grading * 5.0 / 3.0),
                        trace=replace(self.trace, turn=min(self.trace.turn * factor, MAX_TURN)))
 
+    def refined(self):
+        """The next level of a tolerance-driven solve: surface elements and turn limit halved
+        (the far-field grading kept: `draft`'s already meets 3e-5 for FE and BEM)."""
+        return replace(self, name=f"{self.name}/2", h_surface=0.5 * self.h_surface,
+                       trace=replace(self.trace, turn=0.5 * self.trace.turn))
+
 
 def jkr_radius(load, mu):
     """JKR contact radius ā at the force P̄ = `load` (≥ −3/4 ... any compressive value), in √(Rε)."""

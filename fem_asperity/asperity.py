@@ -177,3 +177,43 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
                                f"discretisation failed ({exc}); try a finer accuracy")
     return replace(result, error_estimate=_difference(result, coarse),
                    wall_s=result.wall_s + coarse.wall_s)
+
+
+#: Events a tolerance-driven solve converges (relative change between levels).
+TOLERANCE_KEYS = ("p_max", "p_off")
+
+
+def solve_to_tolerance(mu, tolerance, *, method="fem", solid=Solid(), radius_ratio=None,
+                       p_end=1.0, max_levels=5, progress=None):
+    """Refine from `draft` (halving the surface elements and the turn limit) until P̄max and
+    P̄off change by at most `tolerance` (relative) between two levels; the finer one is returned
+    with those changes as its error estimate. If `max_levels` do not get there, the last level
+    is returned with a message saying so. Arguments otherwise as `solve_curve`."""
+    mu = in_range("mu", mu, 0.0, 1e4)
+    tolerance = in_range("tolerance", tolerance, 0.0, 0.1)
+    disc = discretisation(mu, "draft", p_end=p_end, method=method)
+    if method == "bem" and solid.layer_thickness is not None:
+        raise InputError("method 'bem' models a homogeneous half-space; use 'fem' for a layer")
+
+    def level(k, d):
+        report = (lambda f: progress((k + f) / max_levels)) if progress else None
+        return solve_discretised(mu, d, solid=solid, radius_ratio=radius_ratio, progress=report)
+
+    previous, wall = level(0, disc), 0.0
+    for k in range(1, max_levels):
+        wall += previous.wall_s
+        disc = disc.refined()
+        result = level(k, disc)
+        change = _difference(result, previous)
+        worst = max(change[key] / abs(getattr(result.events, key)) for key in TOLERANCE_KEYS)
+        done = worst <= tolerance
+        note = (f"; tolerance {tolerance:g} on P̄max, P̄off " + ("met" if done else "NOT met")
+                + f" after {k + 1} levels (relative change {worst:.2g}, h = {disc.h_surface:.4g})")
+        result = replace(result, accuracy=f"tolerance {tolerance:g}", error_estimate=change,
+                         wall_s=wall + result.wall_s, message=result.message + note)
+        if done:
+            break
+        previous = result
+    if progress:
+        progress(1.0)
+    return result

@@ -70,3 +70,14 @@ def test_out_files_are_all_or_nothing(tmp_path, monkeypatch):
     assert names == {"approach.csv", "retraction.csv", "equilibrium.csv", "result.json",
                      "curve.png"}
     assert (target / "approach.csv").read_text().startswith("delta_o,")
+
+
+def test_tolerance_driven_solve_meets_its_tolerance():
+    """Refined until P̄max and P̄off move by ≤ 1e-6; the answer is that close to a much finer
+    BEM reference (h = 0.00625, turn 0.025: P̄off = −0.8353323349)."""
+    from fem_asperity.asperity import solve_to_tolerance
+
+    result = solve_to_tolerance(1.0, 1e-6, method="bem")
+    assert "met after" in result.message and result.accuracy == "tolerance 1e-06"
+    assert result.error_estimate["p_off"] <= 1e-6 * abs(result.events.p_off)
+    assert result.events.p_off == pytest.approx(-0.8353323349, rel=2e-6)

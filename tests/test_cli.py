@@ -135,7 +135,7 @@ def test_curve_json_files_and_progress(tmp_path):
     ["curve", "--mu", "1", "--layer-modulus-ratio", "2"],
     ["curve", "--mu", "1", "--layer-thickness", "-1"], ["curve", "--mu", "1", "--nu", "0.5"],
     ["curve", "--mu", "1", "--method", "bem", "--layer-thickness", "1"],
-    ["curve", "--mu", "1", "--method", "spectral"],
+    ["curve", "--mu", "1", "--method", "spectral"], ["curve", "--mu", "1", "--tolerance", "0"],
     ["onset", "--bracket", "0.3", "0.5"], ["onset", "--bracket", "1", "0.3"],
 ])
 def test_curve_bad_input_is_one_line_exit_2(args):
