@@ -14,12 +14,14 @@ functional form, by least squares:
 """
 
 import json
+import sys
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
 import numpy as np
 from scipy.optimize import minimize_scalar
 
+from ._io import write_atomic
 from .laws import AsperityLaws
 from .onset import jump_in_onset
 from .store import cache_dir, stored_curve
@@ -94,8 +96,9 @@ def stored_refit(*, method="bem", accuracy="default", cache=None):
         residuals = {k: tuple(v) for k, v in data["residuals"].items()}
         return Refit(AsperityLaws(**data["laws"]), residuals, tuple(data["mu"]),
                      data["method"], data["accuracy"])
+    print(f"refitting the eight constants from {method} curves at {len(REFIT_MU)} mu (stored "
+          f"for next time) ...", file=sys.stderr, flush=True)
     found = refit(method=method, accuracy=accuracy)
-    from ._io import write_atomic
 
     write_atomic(path, json.dumps({**asdict(found), "laws": asdict(found.laws)}, indent=1))
     return found

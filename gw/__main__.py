@@ -74,8 +74,6 @@ def _law(args, mu):
     if args.law == "paper":
         return PaperLaw(mu)
     if args.law == "refit":
-        print(f"{PROG}: refitting the constants from stored BEM curves (first time: ~20 s)",
-              file=sys.stderr)
         return PaperLaw(mu, stored_refit(accuracy=args.accuracy).laws, name="refit")
     bar = ProgressBar(f"{args.law.upper()} curve mu={mu:g} (stored for next time)")
     law = solved_law(mu, method=args.law, accuracy=args.accuracy, progress=bar)
