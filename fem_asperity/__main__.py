@@ -120,8 +120,6 @@ def _curve(args, parser):
     solid = Solid(nu=args.nu, layer_thickness=args.layer_thickness,
                   layer_modulus_ratio=args.layer_modulus_ratio,
                   layer_nu=args.nu if args.layer_nu is None else args.layer_nu)
-    if args.method == "bem" and args.layer_thickness is not None:
-        parser.error("curve: --method bem models a homogeneous half-space; use fem for a layer")
     bar = ProgressBar(f"{args.method.upper()} curve mu={args.mu:g}")
     try:
         if args.tolerance is not None:

@@ -87,6 +87,8 @@ class CurveResult:
 def elastic_surface(disc, solid=Solid()):
     """The elastic solid's surface operators for the discretisation's method."""
     if disc.method == "bem":
+        if solid.layer_thickness is not None:
+            raise InputError("method 'bem' models a homogeneous half-space; use 'fem' for a layer")
         return BoussinesqSurface(radial_grid(h=disc.h_surface, r_fine=disc.r_fine,
                                              r_max=disc.size, growth=disc.grading))
     mesh = graded_mesh(h_surface=disc.h_surface, r_fine=disc.r_fine, size=disc.size,
@@ -158,8 +160,6 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     if radius_ratio is not None:
         in_range("radius_ratio", radius_ratio, 10.0, np.inf, closed_lo=True)
     disc = discretisation(mu, accuracy, p_end=p_end, method=method)
-    if method == "bem" and solid.layer_thickness is not None:
-        raise InputError("method 'bem' models a homogeneous half-space; use 'fem' for a layer")
     share = 0.7 if error_estimate else 1.0
     report = (lambda f: progress(share * f)) if progress else None
     result = solve_discretised(mu, disc, solid=solid, radius_ratio=radius_ratio,
@@ -192,8 +192,6 @@ def solve_to_tolerance(mu, tolerance, *, method="fem", solid=Solid(), radius_rat
     mu = in_range("mu", mu, 0.0, 1e4)
     tolerance = in_range("tolerance", tolerance, 0.0, 0.1)
     disc = discretisation(mu, "draft", p_end=p_end, method=method)
-    if method == "bem" and solid.layer_thickness is not None:
-        raise InputError("method 'bem' models a homogeneous half-space; use 'fem' for a layer")
 
     def level(k, d):
         report = (lambda f: progress((k + f) / max_levels)) if progress else None

@@ -9,7 +9,7 @@ from fem_asperity.accuracy import PRESETS
 from fem_asperity.refit import stored_refit
 from fem_asperity.scales import Scales
 
-from .integrate import strength, totals
+from .integrate import separation_range, strength, totals
 from .laws import PaperLaw
 from .surface import RoughSurface, omega_mccool
 from .tables import solved_law
@@ -98,11 +98,7 @@ def main(argv=None):
         return 0
     if args.points < 2:
         parser.error("curve: --points must be at least 2")
-    if args.d is None:
-        lo = min(law.breakpoints) / surface.zeta - 4.0 / surface.omega
-        hi = max(law.breakpoints) / surface.zeta + 6.0 / surface.omega
-    else:
-        lo, hi = args.d
+    lo, hi = separation_range(law, surface) if args.d is None else args.d
     d = np.linspace(lo, hi, args.points)
     force, area = totals(law, surface, d)
     if args.json:

@@ -64,13 +64,19 @@ class Strength:
     d_at_max: float
 
 
-def strength(law, surface, *, samples=48):
-    """F̄max and its d̃: the lowest of `samples` values of F̄ on a d̃ grid spanning the law's
-    breakpoints ± the height window, refined by bounded Brent between its grid neighbours
-    (F̄ can have more than one local minimum; the grid picks the deepest)."""
+def separation_range(law, surface):
+    """(d̃_lo, d̃_hi) where F̄ and S̄ change: from 4 height deviations below the law's lowest
+    breakpoint to the height window above its highest."""
     bps = law.breakpoints or (1.0,)
-    lo = min(bps) / surface.zeta - 4.0 / surface.omega
-    hi = max(bps) / surface.zeta + WINDOW / surface.omega
+    return (min(bps) / surface.zeta - 4.0 / surface.omega,
+            max(bps) / surface.zeta + WINDOW / surface.omega)
+
+
+def strength(law, surface, *, samples=48):
+    """F̄max and its d̃: the lowest of `samples` values of F̄ on a d̃ grid over
+    `separation_range`, refined by bounded Brent between its grid neighbours (F̄ can have more
+    than one local minimum; the grid picks the deepest)."""
+    lo, hi = separation_range(law, surface)
     grid = np.linspace(lo, hi, samples)
     f = totals(law, surface, grid)[0]
     k = int(np.argmin(f))

@@ -24,10 +24,10 @@ class PaperLaw:
 
     def __init__(self, mu, constants=PAPER_LAWS, *, name="paper"):
         self.mu, self.constants, self.name = positive("mu", mu), constants, name
-        self._at = constants.at(mu)
+        at_mu = constants.at(mu)
+        self.force, self.area = at_mu.force, at_mu.area
         self.breakpoints = tuple(sorted({float(constants.delta_oc(mu)),
                                          float(constants.delta_o_star(mu))}))
-        self.force, self.area = self._at.force, self._at.area
 
 
 class TabulatedLaw:

@@ -7,6 +7,7 @@ from pathlib import Path
 
 from fem_asperity import InputError
 from fem_asperity._checks import positive
+from fem_asperity.accuracy import PRESETS
 from fem_asperity._cli import Parser, dump_json, run
 from fem_asperity.laws import PAPER_LAWS
 
@@ -46,7 +47,7 @@ def build_parser():
     for command in (everything, rough):
         command.add_argument("--compare-mu", type=float, nargs="+", default=list(COMPARISON_MU),
                              help="mu of the paper-law vs BEM-law check (default: %(default)s)")
-        command.add_argument("--accuracy", choices=("draft", "default", "fine"),
+        command.add_argument("--accuracy", choices=tuple(PRESETS),
                              default="default", help="accuracy of the BEM curves (default)")
     return parser
 
@@ -56,9 +57,11 @@ def _step(i, text, total=5):
 
 
 def _rough(out, args, first_step, total):
+    """Run the rough-surface stage; returns (its full results, the summary's part of them)."""
     steps = iter(range(first_step, first_step + 2))
-    return run_rough_surface(out, compare_mu=args.compare_mu, accuracy=args.accuracy,
-                             step=lambda text: _step(next(steps), text, total))
+    rough = run_rough_surface(out, compare_mu=args.compare_mu, accuracy=args.accuracy,
+                              step=lambda text: _step(next(steps), text, total))
+    return rough, {"rough_surface": rough["verdicts"], "law_comparison": rough["law_comparison"]}
 
 
 def _check_out(out):
@@ -78,12 +81,11 @@ def run_all(out, command, args):
     save_figure(plot_laws(rows), out / "paper_laws.png")
     _step(3, "closed-form checks")
     checks = closed_form_checks()
-    rough = _rough(out, args, 4, 5)
+    rough, rough_summary = _rough(out, args, 4, 5)
     write_atomic(out / "report.md", render(checks, FILES + ROUGH_FILES, command,
                                            rough_section(rough)))
     return {"out": str(out), "files": [name for name, _ in FILES + ROUGH_FILES],
-            "checks": [c.as_dict() for c in checks], "rough_surface": rough["verdicts"],
-            "law_comparison": rough["law_comparison"],
+            "checks": [c.as_dict() for c in checks], **rough_summary,
             "not_yet_available": [{"item": i, "needs": n} for i, n in PENDING]}
 
 
@@ -93,9 +95,8 @@ def main(argv=None):
     command = " ".join([PROG] + (sys.argv[1:] if argv is None else list(argv)))
     if args.command == "rough-surface":
         _check_out(args.out)
-        rough = _rough(args.out, args, 1, 2)
         summary = {"out": str(args.out), "files": [name for name, _ in ROUGH_FILES],
-                   "rough_surface": rough["verdicts"], "law_comparison": rough["law_comparison"]}
+                   **_rough(args.out, args, 1, 2)[1]}
         if args.json:
             dump_json(summary)
         else:
