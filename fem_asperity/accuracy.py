@@ -21,8 +21,11 @@ PRESETS = {
 }
 #: Largest turn limit (rad): at 0.4 the BEM at μ = 3 (h = 0.1) stepped off the curve.
 MAX_TURN = 0.2
-#: Surface element size of `default`: min(H_MAX, H_COHESIVE · μ^(−3/2)), in √(Rε).
-H_MAX, H_COHESIVE = 0.1, 0.25
+#: Surface element length of `default`: min(H_MAX, H_COHESIVE · μ^(−3/2)), in √(Rε). The FE mesh
+#: makes its surface edges as long as this allows (⅔ of it at worst, `mesh.graded_mesh`).
+#: H_MAX = 1/16: at 1/10 the coarser bulk near the surface shifts the FE separations by 4e-5
+#: (μ = 1, jump-in δ̄o against the BEM), more than the error estimate reports (3e-5).
+H_MAX, H_COHESIVE = 0.0625, 0.25
 #: Largest boundary-integral element at `default`: linear elements reproduce the centre
 #: deflection, and so the initial-contact separation δ̄o*, less well than the FE's quadratic ones
 #: (μ = 1: h = 0.05 puts δ̄o* 6e-3 off, h = 0.025 1.4e-3). Below it the BEM's elements are half

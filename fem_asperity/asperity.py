@@ -10,9 +10,11 @@ exact extrema of P̄; approach and retraction under δ̄o control read off it, j
 (`accuracy.Discretisation.coarsened`)."""
 
 import time
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field, replace
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
 from ._checks import InputError, in_range, positive
 from .accuracy import discretisation
@@ -23,6 +25,11 @@ from .elastic import HalfSpace, Solid
 from .mesh import graded_mesh
 from .paths import equilibrium_curve, refine_force_extrema, walk
 from .surface import LJSurface
+
+#: BLAS threads while a curve is traced. Its dense factorisations (n ≈ 100-3000) ran 2.7x slower
+#: with 2 OpenBLAS threads than with 1 on the 2-core development machine (μ = 5, BEM `default`:
+#: 98 s against 36 s); the second core is better spent on a second curve.
+PATH_BLAS_THREADS = 1
 
 #: Event keys compared between the two meshes of the error estimate.
 ESTIMATED = ("p_max", "delta_oc", "a_c", "delta_o_star", "x_oc", "delta_jump_in", "p_jump_after",
@@ -102,12 +109,13 @@ def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, progress=No
     start = time.perf_counter()
     half_space = elastic_surface(disc, solid)
     surface = LJSurface(half_space, mu, radius_ratio=radius_ratio)
-    traced = trace(surface, disc.trace, progress=progress)
-    refine_force_extrema(surface, traced)
-    curve = equilibrium_curve(traced)
-    order = np.arange(len(curve))
-    approach, jumps_in = walk(surface, traced, curve, order)
-    retraction, jumps_out = walk(surface, traced, curve, order[::-1])
+    with threadpool_limits(PATH_BLAS_THREADS, user_api="blas"):
+        traced = trace(surface, disc.trace, progress=progress)
+        refine_force_extrema(surface, traced)
+        curve = equilibrium_curve(traced)
+        order = np.arange(len(curve))
+        approach, jumps_in = walk(surface, traced, curve, order)
+        retraction, jumps_out = walk(surface, traced, curve, order[::-1])
     folds = int(curve.branch.max())
     message = f"{folds} folds of the equilibrium curve"
     if folds > 2:
@@ -150,8 +158,8 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     radius_ratio: R/ε for the exact sphere profile instead of Derjaguin's parabola (None).
     p_end: the approach goes on until P̄ reaches this compressive force (2πRΔγ units).
     error_estimate: also solve with twice as large surface elements (and turn limit, and a
-        steeper far-field grading) and report the change of every event (costs about half as
-        much again). If that coarser solve fails, the estimate is None and `message` says why.
+        steeper far-field grading) and report the change of every event. That solve runs
+        alongside on the second core; if it fails, the estimate is None and `message` says why.
     progress: callable(fraction in [0, 1]) for a progress bar.
     Returns a `CurveResult`; raises `ContinuationError` if the path cannot be followed.
     """
@@ -160,23 +168,26 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     if radius_ratio is not None:
         in_range("radius_ratio", radius_ratio, 10.0, np.inf, closed_lo=True)
     disc = discretisation(mu, accuracy, p_end=p_end, method=method)
-    share = 0.7 if error_estimate else 1.0
-    report = (lambda f: progress(share * f)) if progress else None
-    result = solve_discretised(mu, disc, solid=solid, radius_ratio=radius_ratio,
-                               progress=report)
+    options = dict(solid=solid, radius_ratio=radius_ratio)
     if not error_estimate:
-        return result
-    coarse_report = (lambda f: progress(share + (1.0 - share) * f)) if progress else None
+        return solve_discretised(mu, disc, progress=progress, **options)
     start = time.perf_counter()
-    try:
-        coarse = solve_discretised(mu, disc.coarsened(), solid=solid,
-                                   radius_ratio=radius_ratio, progress=coarse_report)
-    except ContinuationError as exc:
-        return replace(result, wall_s=result.wall_s + time.perf_counter() - start,
-                       message=f"{result.message}; no error estimate: the coarser "
-                               f"discretisation failed ({exc}); try a finer accuracy")
-    return replace(result, error_estimate=_difference(result, coarse),
-                   wall_s=result.wall_s + coarse.wall_s)
+    # The coarser solve runs in a second thread: the dense factorisations release the GIL, so
+    # the two curves share the two cores (one BLAS thread each).
+    with threadpool_limits(PATH_BLAS_THREADS, user_api="blas"), ThreadPoolExecutor(1) as pool:
+        coarse_job = pool.submit(solve_discretised, mu, disc.coarsened(), **options)
+        result = solve_discretised(mu, disc, progress=progress, **options)
+        try:
+            coarse = coarse_job.result()
+            estimate, note = _difference(result, coarse), ""
+            if coarse.equilibrium.branch.max() > 2:
+                note = ("; the coarser solve of the error estimate ripples (more than two folds), "
+                        "so the estimate is pessimistic")
+        except ContinuationError as exc:
+            estimate, note = None, (f"; no error estimate: the coarser discretisation failed "
+                                    f"({exc}); try a finer accuracy")
+    return replace(result, error_estimate=estimate, message=result.message + note,
+                   wall_s=time.perf_counter() - start)
 
 
 #: Events a tolerance-driven solve converges (relative change between levels).

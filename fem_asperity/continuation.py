@@ -34,6 +34,8 @@ class TraceSettings:
         with quadratic convergence the state is accurate to about tol.
     max_newton, target_newton: Newton iterations allowed per point, and the count above which
         the next step is shortened.
+    patience: a step is abandoned (and retried shorter) after this many Newton iterations in a
+        row that do not halve the residual.
     """
 
     dp: float = 0.05
@@ -45,6 +47,7 @@ class TraceSettings:
     p_end: float = 1.0
     tol: float = 1e-9
     max_newton: int = 10
+    patience: int = 3
     target_newton: int = 4
     max_points: int = 20000
 
@@ -132,16 +135,18 @@ class Linearisation:
         return dw / norm, dd / norm, observed / norm
 
 
-def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10):
+def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10, patience=None):
     """Newton with a gap-preserving, residual-decreasing line search on the bordered system.
 
     Solves g(w, δ) = 0 with direction·(o(w, δ) − anchor) = ds for the observables
     o = (x̄o, δ̄o, P̄). The matrix is refactored at every iterate: chord steps with an old matrix
     overshoot into the repulsive wall where the contact front has moved.
+    patience: give up after this many consecutive iterations that fail to halve the residual
+    (None: only after max_newton); a continuation step is cheaper to retry shorter.
     Returns (w, δ, iterations) or None.
     """
     w, delta = w.copy(), float(delta)
-    scale = None
+    scale, slow = None, 0
     for iteration in range(1, max_newton + 1):
         g = surface.residual(w, delta)
         c = direction @ (_observables(surface, w, delta) - anchor) - ds
@@ -167,7 +172,27 @@ def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10
         increment = alpha * max(np.max(np.abs(dw)), abs(dd))
         if increment <= np.sqrt(tol) * (1.0 + np.max(np.abs(w))) and np.max(np.abs(g_try)) <= tol * scale:
             return w, delta, iteration
+        slow = slow + 1 if merit_try > 0.5 * merit else 0
+        if patience is not None and slow >= patience:
+            return None
     return None
+
+
+def _predict(trace_so_far, tangent, ds):
+    """Predicted state (w, δ) a step ds along the curve from its last point: the tangent plus the
+    curvature that passes through the point before (with the unit tangent at the last point, its
+    position σ = t·(o_prev − o_last) along the curve). Measured at μ = 5 (BEM, `default`): 15% fewer
+    Newton iterations than the tangent alone."""
+    tr = trace_so_far
+    dw, dd, t = tangent
+    w, delta = tr.states[-1], tr.delta[-1]
+    w_guess, d_guess = w + ds * dw, delta + ds * dd
+    if len(tr.delta) > 1:
+        back = np.array([tr.x[-2] - tr.x[-1], tr.delta[-2] - delta, tr.p[-2] - tr.p[-1]])
+        sigma, curvature = back @ t, ds * ds / (back @ back)
+        w_guess += curvature * (tr.states[-2] - w - sigma * dw)
+        d_guess += curvature * (tr.delta[-2] - delta - sigma * dd)
+    return w_guess, d_guess
 
 
 def trace(surface, settings=TraceSettings(), progress=None):
@@ -191,7 +216,7 @@ def trace(surface, settings=TraceSettings(), progress=None):
     tangent = linear.tangent()
     result.append(surface, w, delta, linear.stable, surface.force(w, delta),
                   surface.contact(w, delta), tangent[2])
-    ds = 0.1
+    ds, ds_cap = 0.1, np.inf  # ds_cap: 0.7 × the last step Newton failed on, relaxed 10% per point
     log_span = np.log(s.x_start / 0.8)
     while result.p[-1] < s.p_end or not result.stable[-1]:
         if len(result.delta) >= s.max_points:
@@ -200,8 +225,9 @@ def trace(surface, settings=TraceSettings(), progress=None):
             raise ContinuationError(f"the path turned back to separation x = {result.x[-1]:.6g}")
         dw, dd, t = tangent
         anchor = np.array([result.x[-1], delta, result.p[-1]])
-        step = correct(surface, w + ds * dw, delta + ds * dd, row, anchor, ds * (row @ t),
-                       tol=s.tol, max_newton=s.max_newton)
+        w_guess, d_guess = _predict(result, tangent, ds)
+        step = correct(surface, w_guess, d_guess, row, anchor, ds * (row @ t),
+                       tol=s.tol, max_newton=s.max_newton, patience=s.patience)
         if step is not None:
             w_new, d_new, its = step
             result.newton_iterations += its
@@ -217,11 +243,12 @@ def trace(surface, settings=TraceSettings(), progress=None):
                 if progress is not None:
                     progress(min(1.0, np.log(s.x_start / max(result.x[-1], 1e-3)) / log_span))
                 effort = min(1.0, s.target_newton / its)
-                ds = min(ds * min(2.0, 0.8 / ratio) * effort, s.ds_max)
+                ds_cap *= 1.1
+                ds = min(ds * min(2.0, 0.8 / ratio) * effort, s.ds_max, ds_cap)
                 continue
             ds_next = ds * max(0.2, 0.8 / ratio)
         else:
-            ds_next = 0.5 * ds
+            ds_next, ds_cap = 0.5 * ds, 0.7 * ds
         result.rejected_steps += 1
         if ds <= s.ds_min:
             raise ContinuationError(f"Newton failed at the smallest step near δ = {delta:.6g}")

@@ -2,7 +2,7 @@
 
 Lengths are in the radial scale √(Rε) (one length unit for r and z, so the elastic problem stays
 isotropic). The domain is [0, size] × [−size, 0]: r along x, depth along −y, the surface at y = 0.
-The mesh is fine (element size `h_surface`) along the surface strip 0 ≤ r ≤ `r_fine` and grows
+The mesh is fine (surface edges ≤ `h_surface`) along the surface strip 0 ≤ r ≤ `r_fine` and grows
 linearly with the distance d from that strip, size ≈ h_surface + grading · d, by conforming
 red-green-blue refinement of a coarse tensor grid (`MeshTri.refined`). With a layer, the interface
 z = −t is a mesh line and the elements above it form the subdomain 'layer'.
@@ -17,10 +17,20 @@ from ._checks import in_range, positive
 _MAX_PASSES = 60
 
 
-def _coarse_grid(r_fine, size, layer_thickness):
-    """Tensor grid with lines at 0, r_fine·2^k (and −t): element aspect ratios stay ≤ 2 near r_fine."""
+def _surface_edge(r_fine, h_surface):
+    """(edge, cells): the longest surface edge ≤ h_surface that red refinement of `cells` ∈ {1, 2, 3}
+    equal coarse cells across the strip reaches exactly (edge = r_fine / (cells · 2^k) > ⅔ h)."""
+    needed = int(np.ceil(r_fine / h_surface - 1e-9))
+    count, cells = min((m * 2 ** int(np.ceil(np.log2(max(needed / m, 1.0)))), m) for m in (1, 2, 3))
+    return r_fine / count, cells
+
+
+def _coarse_grid(r_fine, size, cells, layer_thickness):
+    """Tensor grid with `cells` square cells across the strip, then lines at r_fine·2^k (and −t):
+    element aspect ratios stay ≤ 3 near r_fine."""
     levels = int(np.ceil(np.log2(size / r_fine)))
-    xs = np.concatenate([[0.0], r_fine * 2.0 ** np.arange(levels), [size]])
+    xs = np.concatenate([np.linspace(0.0, r_fine, cells + 1), r_fine * 2.0 ** np.arange(levels),
+                         [size]])
     xs = np.unique(xs[xs <= size])
     ys = -xs[::-1]
     if layer_thickness is not None:
@@ -37,7 +47,8 @@ def _element_sizes(mesh):
 def graded_mesh(*, h_surface, r_fine, size, grading=0.3, layer_thickness=None):
     """Return a conforming graded `MeshTri` with boundaries 'top', 'axis', 'far' (bottom + outer).
 
-    h_surface: element size on the surface strip r ≤ r_fine, in √(Rε).
+    h_surface: longest surface edge on the strip r ≤ r_fine, in √(Rε) (edges come out uniform,
+        between ⅔ h_surface and h_surface, a few halved by the conforming closure).
     r_fine: radius of the finely meshed surface strip, in √(Rε).
     size: truncation radius and depth L, in √(Rε) (> 4 r_fine).
     grading: growth of the element size per unit distance from the strip, in (0, 1].
@@ -50,11 +61,12 @@ def graded_mesh(*, h_surface, r_fine, size, grading=0.3, layer_thickness=None):
     grading = in_range("grading", grading, 0.0, 1.0 + 1e-12)
     if layer_thickness is not None:
         layer_thickness = in_range("layer_thickness", layer_thickness, 0.0, size)
-    mesh = _coarse_grid(r_fine, size, layer_thickness)
+    edge, cells = _surface_edge(r_fine, h_surface)
+    mesh = _coarse_grid(r_fine, size, cells, layer_thickness)
     for _ in range(_MAX_PASSES):
         diameter, centroid = _element_sizes(mesh)
         distance = np.hypot(np.maximum(centroid[0] - r_fine, 0.0), centroid[1])
-        marked = np.nonzero(diameter > h_surface + grading * distance)[0]
+        marked = np.nonzero(diameter > np.sqrt(2.0) * edge * (1.0 + 1e-9) + grading * distance)[0]
         if marked.size == 0:
             break
         mesh = mesh.refined(marked)

@@ -9,7 +9,8 @@ from fem_asperity.mesh import graded_mesh
 
 
 def _model(order=2, grading=0.5, layer=None, solid=Solid()):
-    mesh = graded_mesh(h_surface=0.1, r_fine=2.0, size=1e4, grading=grading, layer_thickness=layer)
+    # surface edges 2/32 = 0.0625 (the longest that 3 or fewer cells across r_fine = 2 allow)
+    mesh = graded_mesh(h_surface=0.07, r_fine=2.0, size=1e4, grading=grading, layer_thickness=layer)
     return HalfSpace(mesh, order=order, solid=solid)
 
 
@@ -97,3 +98,15 @@ def test_mesh_is_graded_and_tagged():
     assert length.max() > 10.0  # coarse far away
     assert np.isclose(mesh.p[1], -0.3).any()
     assert mesh.subdomains["layer"].size > 0
+
+
+@pytest.mark.parametrize("h_surface", [0.05, 0.07, 0.09, 0.13])
+def test_surface_edges_are_at_most_h_and_mostly_longer_than_two_thirds_h(h_surface):
+    mesh = graded_mesh(h_surface=h_surface, r_fine=1.7, size=100.0)
+    facets = mesh.facets[:, mesh.boundaries["top"]]
+    r = mesh.p[0, facets]
+    length = np.abs(r[1] - r[0])[r.max(axis=0) <= 1.7 + 1e-12]
+    assert length.sum() == pytest.approx(1.7, rel=1e-12)
+    assert length.max() <= h_surface + 1e-12
+    assert 2.0 / 3.0 * h_surface < np.median(length)
+    assert length.size <= 1.1 * 1.7 / np.median(length)  # a few halved by the conforming closure
