@@ -1,9 +1,9 @@
 """Accuracy presets: how fine the surface discretisation and the continuation are for a given μ.
 
 The surface element size follows the cohesive zone at the contact edge, whose width shrinks like
-μ^(−3/2) √(Rε); the finely meshed strip covers the JKR contact radius at the deepest load. Both
-methods get the same surface node spacing: the boundary-integral method's linear elements are
-half as long as the FE's quadratic ones.
+μ^(−3/2) √(Rε); the finely meshed strip covers the JKR contact radius at the deepest load. At
+large μ the FE's quadratic elements need nodes about 0.7 times as far apart as the boundary-
+integral method's linear ones to keep the force curve free of ripple (measured at μ = 5).
 """
 
 from dataclasses import dataclass, replace
@@ -21,15 +21,18 @@ PRESETS = {
 }
 #: Largest turn limit (rad): at 0.4 the BEM at μ = 3 (h = 0.1) stepped off the curve.
 MAX_TURN = 0.2
-#: Surface element length of `default`: min(H_MAX, H_COHESIVE · μ^(−3/2)), in √(Rε). The FE mesh
+#: FE surface element length of `default`: min(H_MAX, H_COHESIVE · μ^(−3/2)), in √(Rε). The mesh
 #: makes its surface edges as long as this allows (⅔ of it at worst, `mesh.graded_mesh`).
 #: H_MAX = 1/16: at 1/10 the coarser bulk near the surface shifts the FE separations by 4e-5
 #: (μ = 1, jump-in δ̄o against the BEM), more than the error estimate reports (3e-5).
-H_MAX, H_COHESIVE = 0.0625, 0.25
+#: H_COHESIVE = 0.2: at 0.25 (edges 0.0214 at μ = 5) the P2 surface ripples (6 folds) and δ̄oc,
+#: ā_c are 1.2e-2, 8.7e-3 off; with edges 0.016, 2 folds and 1.3e-3, 9.9e-4.
+H_MAX, H_COHESIVE = 0.0625, 0.2
+#: BEM element length of `default` at large μ: H_COHESIVE_BEM · μ^(−3/2) (no ripple at μ = 5).
+H_COHESIVE_BEM = 0.125
 #: Largest boundary-integral element at `default`: linear elements reproduce the centre
 #: deflection, and so the initial-contact separation δ̄o*, less well than the FE's quadratic ones
-#: (μ = 1: h = 0.05 puts δ̄o* 6e-3 off, h = 0.025 1.4e-3). Below it the BEM's elements are half
-#: the FE's, the same node spacing across the cohesive zone.
+#: (μ = 1: h = 0.05 puts δ̄o* 6e-3 off, h = 0.025 1.4e-3).
 H_MAX_BEM = 0.025
 #: Truncation radius/depth of the half-space, in √(Rε): separations shift by ~2μ^(3/2)|P̄|/L.
 DOMAIN_SIZE = 1e5
@@ -93,7 +96,7 @@ def discretisation(mu, accuracy="default", *, p_end=1.0, method="fem"):
     r_fine = max(4.0, 1.3 * jkr_radius(p_end, mu))
     trace = TraceSettings(turn=turn, p_end=p_end)
     if method == "bem":
-        h_bem = factor * min(H_MAX_BEM, 0.5 * H_COHESIVE * mu**-1.5)
+        h_bem = factor * min(H_MAX_BEM, H_COHESIVE_BEM * mu**-1.5)
         return Discretisation(name=accuracy, h_surface=h_bem, r_fine=r_fine,
                               size=TRACTION_RADIUS, grading=0.1, order=1, method="bem",
                               trace=trace)

@@ -49,6 +49,9 @@ def build_parser():
                              help="mu of the paper-law vs BEM-law check (default: %(default)s)")
         command.add_argument("--accuracy", choices=tuple(PRESETS),
                              default="default", help="accuracy of the BEM curves (default)")
+        command.add_argument("--refit-method", choices=("bem", "fem"), default="bem",
+                             help="solver of the curves the constants are refitted from (bem: "
+                                  "seconds; fem: minutes the first time)")
     return parser
 
 
@@ -60,6 +63,7 @@ def _rough(out, args, first_step, total):
     """Run the rough-surface stage; returns (its full results, the summary's part of them)."""
     steps = iter(range(first_step, first_step + 2))
     rough = run_rough_surface(out, compare_mu=args.compare_mu, accuracy=args.accuracy,
+                              refit_method=args.refit_method,
                               step=lambda text: _step(next(steps), text, total))
     return rough, {"rough_surface": rough["verdicts"], "law_comparison": rough["law_comparison"]}
 

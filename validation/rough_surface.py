@@ -86,13 +86,13 @@ def omega_sensitivity():
 
 
 def law_comparison(mus, *, method="bem", accuracy="default", sigmas=(0.5, 1.0, 2.0),
-                   progress=None):
+                   refit_method="bem", progress=None):
     """Paper law vs the tabulated solved law at each μ and σ: F̄max of both, the largest |ΔF̄|
     where either F̄ is adhesive (< 0) and the largest |ΔS̄|/max S̄, over d̃ ∈ [0, 8], with where
     they occur (below d̃ = 0 the repulsive Hertz parts dominate both)."""
     rows = []
     d = np.linspace(0.0, 8.0, 161)
-    refitted = stored_refit(method=method, accuracy=accuracy).laws
+    refitted = stored_refit(method=refit_method, accuracy=accuracy).laws
     for mu in mus:
         law = solved_law(mu, method=method, accuracy=accuracy, progress=progress)
         paper = PaperLaw(mu)
@@ -207,7 +207,7 @@ def section(summary):
                      f"{r['max_dS_rel']:.3g} | {r['d_at_max_dS']:.2f} | "
                      f"{r['interpolation_error']:.1e} |")
     fit = summary["refit"]
-    lines += ["", "### The eight constants refitted from BEM curves", "",
+    lines += ["", f"### The eight constants refitted from {fit['method'].upper()} curves", "",
               f"Least squares in the paper's forms over μ = {', '.join(f'{m:g}' for m in fit['mu'])}"
               f" ({fit['method']}, {fit['accuracy']}); mu_jump is the measured onset.", "",
               "| constant | paper | refit |", "|---|---|---|"]
@@ -217,8 +217,9 @@ def section(summary):
     return "\n".join(lines) + "\n"
 
 
-def run(out, *, compare_mu=COMPARISON_MU, accuracy="default", step=print):
-    """Compute everything, write rough_surface.json/.png/.md and law_comparison.png into `out`."""
+def run(out, *, compare_mu=COMPARISON_MU, accuracy="default", refit_method="bem", step=print):
+    """Compute everything, write rough_surface.json/.png/.md and law_comparison.png into `out`.
+    The constants are refitted from `refit_method` ('bem' or 'fem') curves."""
     import json
 
     from fem_asperity._io import save_figure, write_atomic
@@ -230,14 +231,16 @@ def run(out, *, compare_mu=COMPARISON_MU, accuracy="default", step=print):
     spread = collapse()
     summary = {"figures": data, "collapse": spread, "omega_sensitivity": omega_sensitivity(),
                "verdicts": verdicts(data, spread)}
-    step(f"rough surface: constants refitted from BEM curves, paper law vs refit vs solved "
+    step(f"rough surface: constants refitted from {refit_method.upper()} curves, paper law vs "
+         f"refit vs solved "
          f"(BEM, {accuracy}) law at mu = "
          + ", ".join(f"{m:g}" for m in compare_mu) + " (solved once, then stored)")
-    fit = stored_refit(accuracy=accuracy)
+    fit = stored_refit(method=refit_method, accuracy=accuracy)
     summary["refit"] = {"laws": asdict(fit.laws), "paper": asdict(PAPER_LAWS),
                         "residuals": fit.residuals, "mu": fit.mu, "method": fit.method,
                         "accuracy": fit.accuracy}
-    summary["law_comparison"] = law_comparison(compare_mu, accuracy=accuracy)
+    summary["law_comparison"] = law_comparison(compare_mu, accuracy=accuracy,
+                                               refit_method=refit_method)
     write_atomic(out / "rough_surface.json", json.dumps(summary, indent=1, allow_nan=False))
     save_figure(plot(data, spread), out / "rough_surface.png")
     save_figure(plot_comparison(compare_mu, accuracy=accuracy), out / "law_comparison.png")
