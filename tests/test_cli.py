@@ -95,6 +95,14 @@ def test_validation_bad_compare_mu_is_one_line_and_writes_nothing(tmp_path):
     assert not (tmp_path / "out").exists()
 
 
+def test_validation_unknown_refit_method_is_one_line_and_writes_nothing(tmp_path):
+    done = cli("validation", "rough-surface", "--out", str(tmp_path / "out"), "--refit-method",
+               "spectral")
+    assert done.returncode == 2 and len(done.stderr.strip().splitlines()) == 1, done.stderr
+    assert "refit-method" in done.stderr
+    assert not (tmp_path / "out").exists()
+
+
 def test_validation_all_refuses_a_file_as_output_folder(tmp_path):
     target = tmp_path / "taken"
     target.write_text("keep me")
