@@ -35,7 +35,7 @@ class TraceSettings:
     max_newton, target_newton: Newton iterations allowed per point, and the count above which
         the next step is shortened.
     patience: a step is abandoned (and retried shorter) after this many Newton iterations in a
-        row that do not halve the residual.
+        row that cut the residual by less than 10%.
     """
 
     dp: float = 0.05
@@ -141,7 +141,7 @@ def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10
     Solves g(w, δ) = 0 with direction·(o(w, δ) − anchor) = ds for the observables
     o = (x̄o, δ̄o, P̄). The matrix is refactored at every iterate: chord steps with an old matrix
     overshoot into the repulsive wall where the contact front has moved.
-    patience: give up after this many consecutive iterations that fail to halve the residual
+    patience: give up after this many consecutive iterations that cut the residual by < 10%
     (None: only after max_newton); a continuation step is cheaper to retry shorter.
     Returns (w, δ, iterations) or None.
     """
@@ -172,7 +172,7 @@ def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10
         increment = alpha * max(np.max(np.abs(dw)), abs(dd))
         if increment <= np.sqrt(tol) * (1.0 + np.max(np.abs(w))) and np.max(np.abs(g_try)) <= tol * scale:
             return w, delta, iteration
-        slow = slow + 1 if merit_try > 0.5 * merit else 0
+        slow = slow + 1 if merit_try > 0.9 * merit else 0
         if patience is not None and slow >= patience:
             return None
     return None
@@ -216,7 +216,7 @@ def trace(surface, settings=TraceSettings(), progress=None):
     tangent = linear.tangent()
     result.append(surface, w, delta, linear.stable, surface.force(w, delta),
                   surface.contact(w, delta), tangent[2])
-    ds, ds_cap = 0.1, np.inf  # ds_cap: 0.7 × the last step Newton failed on, relaxed 10% per point
+    ds, ds_cap = 0.1, np.inf  # ds_cap: 0.7 × the last step Newton failed on, relaxed 50% per point
     log_span = np.log(s.x_start / 0.8)
     while result.p[-1] < s.p_end or not result.stable[-1]:
         if len(result.delta) >= s.max_points:
@@ -243,7 +243,7 @@ def trace(surface, settings=TraceSettings(), progress=None):
                 if progress is not None:
                     progress(min(1.0, np.log(s.x_start / max(result.x[-1], 1e-3)) / log_span))
                 effort = min(1.0, s.target_newton / its)
-                ds_cap *= 1.1
+                ds_cap *= 1.5
                 ds = min(ds * min(2.0, 0.8 / ratio) * effort, s.ds_max, ds_cap)
                 continue
             ds_next = ds * max(0.2, 0.8 / ratio)
