@@ -176,8 +176,9 @@ def verdicts(data, spread):
     return [{"claim": c, "found": f, "verdict": v} for c, f, v in rows]
 
 
-#: Tabor parameters at which the paper's law is checked against the solved (BEM) law (μ = 10 and
-#: beyond are out of reach: n ∝ μ² surface nodes and a dense solve per Newton step, ~20 min at 10).
+#: Tabor parameters at which the paper's law is checked against the solved (BEM) law. μ = 10 and
+#: beyond are out of reach: n ∝ μ² surface nodes and a dense factorisation per Newton step; at
+#: μ = 10 (BEM `default`, 2886 nodes) one curve had not finished after 50 min.
 COMPARISON_MU = (0.1, 0.3, 0.5, 0.7, 1.0, 2.0, 3.0, 5.0)
 
 
