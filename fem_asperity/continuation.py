@@ -223,7 +223,7 @@ def trace(surface, settings=TraceSettings(), progress=None):
             raise ContinuationError(f"point budget of {s.max_points} exhausted at δ = {delta:.6g}")
         if result.x[-1] > 2.0 * s.x_start:
             raise ContinuationError(f"the path turned back to separation x = {result.x[-1]:.6g}")
-        dw, dd, t = tangent
+        t = tangent[2]
         anchor = np.array([result.x[-1], delta, result.p[-1]])
         w_guess, d_guess = _predict(result, tangent, ds)
         step = correct(surface, w_guess, d_guess, row, anchor, ds * (row @ t),
