@@ -42,7 +42,7 @@ def run(mu, method, name, disc):
     ev = result.events.records()
     row = {"mu": mu, "method": method, "preset": name, "h_surface": disc.h_surface,
            "dofs": result.dofs, "surface_nodes": result.surface_nodes, "points": result.points,
-           "folds": int(result.equilibrium.branch.max()),
+           "folds": result.folds,
            "newton_iterations": result.newton_iterations,
            "wall_s": time.perf_counter() - start, **{k: ev[k] for k in KEYS}}
     print(f"mu={mu:g} {method} {name:9s} {row['wall_s']:7.1f} s  {row}", file=sys.stderr,

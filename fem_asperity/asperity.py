@@ -74,6 +74,16 @@ class CurveResult:
     message: str = ""
     model: Model | None = field(default=None, repr=False, compare=False)
 
+    @property
+    def folds(self):
+        """Folds of δ̄o along the equilibrium curve (changes of stability)."""
+        return int(self.equilibrium.branch.max())
+
+    @property
+    def ripples(self):
+        """More folds than one jump-in and one jump-out: the sign of a surface mesh too coarse."""
+        return self.folds > 2
+
     def records(self):
         """JSON-ready dict: the command line's keys (dimensionless, tensile forces negative)."""
         return {
@@ -116,12 +126,7 @@ def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, progress=No
         order = np.arange(len(curve))
         approach, jumps_in = walk(surface, traced, curve, order)
         retraction, jumps_out = walk(surface, traced, curve, order[::-1])
-    folds = int(curve.branch.max())
-    message = f"{folds} folds of the equilibrium curve"
-    if folds > 2:
-        message += (" (more than one jump-in and one jump-out: probably ripple from a surface "
-                    "mesh too coarse for this mu; try a finer accuracy)")
-    return CurveResult(
+    result = CurveResult(
         mu=mu,
         accuracy=disc.name,
         solid=solid,
@@ -136,9 +141,13 @@ def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, progress=No
         newton_iterations=traced.newton_iterations,
         wall_s=time.perf_counter() - start,
         method=disc.method,
-        message=message,
         model=Model(half_space, surface, traced),
     )
+    message = f"{result.folds} folds of the equilibrium curve"
+    if result.ripples:
+        message += (" (more than one jump-in and one jump-out: probably ripple from a surface "
+                    "mesh too coarse for this mu; try a finer accuracy)")
+    return replace(result, message=message)
 
 
 def _difference(fine, coarse):
@@ -159,7 +168,8 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     p_end: the approach goes on until P̄ reaches this compressive force (2πRΔγ units).
     error_estimate: also solve with twice as large surface elements (and turn limit, and a
         steeper far-field grading) and report the change of every event. That solve runs
-        alongside on the second core; if it fails, the estimate is None and `message` says why.
+        alongside on the second core; if it fails, the estimate is None and `message` says why
+        (if the main solve fails, its error is raised once the coarser one has ended).
     progress: callable(fraction in [0, 1]) for a progress bar.
     Returns a `CurveResult`; raises `ContinuationError` if the path cannot be followed.
     """
@@ -180,7 +190,7 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
         try:
             coarse = coarse_job.result()
             estimate, note = _difference(result, coarse), ""
-            if coarse.equilibrium.branch.max() > 2:
+            if coarse.ripples:
                 note = ("; the coarser solve of the error estimate ripples (more than two folds), "
                         "so the estimate is pessimistic")
         except ContinuationError as exc:

@@ -29,7 +29,7 @@ def test_bem_result_provenance():
     result = solve_curve(1.0, method="bem", accuracy="draft")
     assert result.method == "bem" and result.dofs == result.surface_nodes
     assert result.error_estimate["p_off"] < 1e-4
-    assert "2 folds" in result.message
+    assert "2 folds" in result.message and result.folds == 2 and not result.ripples
 
 
 def test_bem_refuses_a_layer():
