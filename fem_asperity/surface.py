@@ -42,6 +42,7 @@ class LJSurface:
         factor = cho_factor(half_space.compliance)
         self.stiffness = cho_solve(factor, np.eye(half_space.compliance.shape[0]))
         self.stiffness = 0.5 * (self.stiffness + self.stiffness.T)
+        self._stiffness32 = self.stiffness.astype(np.float32)
 
     def gap(self, w, delta):
         """Gap at the quadrature points, in ε."""
@@ -53,13 +54,19 @@ class LJSurface:
         return self.stiffness @ w + self.load_factor * (self.interp_t @ (self.weights * traction(h)))
 
     def tangent(self, w, delta):
-        """(∂g/∂w, ∂g/∂δ, ∂P̄/∂δ): the symmetric surface tangent, the load sensitivity to δ and
-        the force sensitivity to δ (∂P̄/∂w = −(∂g/∂δ)/μ^(3/2))."""
+        """(∂g/∂w, ∂g/∂δ, ∂P̄/∂δ, slope): the symmetric surface tangent in single precision (it is
+        only factorised, see `continuation.Linearisation`), the load and force sensitivities to δ
+        (∂P̄/∂w = −(∂g/∂δ)/μ^(3/2)), and the weighted spring slope W dp̄/dh for
+        `tangent_product`."""
         slope = self.weights * traction_slope(self.gap(w, delta))
         spring = (self.interp_t @ self.interp.multiply(slope[:, None])).tocoo()
-        jac = self.stiffness.copy()
+        jac = self._stiffness32.copy()
         np.subtract.at(jac, (spring.row, spring.col), self.load_factor * spring.data)
-        return jac, self.load_factor * (self.interp_t @ slope), float(slope.sum())
+        return jac, self.load_factor * (self.interp_t @ slope), float(slope.sum()), slope
+
+    def tangent_product(self, slope, x):
+        """(∂g/∂w) x in double precision, for the tangent with spring `slope` (from `tangent`)."""
+        return self.stiffness @ x - self.load_factor * (self.interp_t @ (slope * (self.interp @ x)))
 
     def force(self, w, delta):
         """P̄ = ∫ p̄ r dr = P/(2πRΔγ); negative = tensile."""
