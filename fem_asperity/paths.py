@@ -43,7 +43,7 @@ def refine_force_extrema(surface, trace, *, xtol=1e-9):
             solved = correct(surface, guess, d_guess, t0, anchor, sigma)
             if solved is None:
                 raise ContinuationError(f"no equilibrium at the extremum near δ = {d_guess:.6g}")
-            w, d, _ = solved
+            w, d, _, _ = solved
             linear = Linearisation(surface, w, d, t0)
             states[sigma] = (w, d, linear)
             return linear.tangent()[2][2]
@@ -102,7 +102,7 @@ def _landing(surface, trace, curve, order, start, delta):
                          np.array([0.0, delta, 0.0]), 0.0)
         if solved is None:  # e.g. a rippled segment: try the next stable crossing
             continue
-        w, d, _ = solved
+        w, d, _, _ = solved
         area, radius = surface.contact(w, d)
         return pos + 1, dict(delta=d, x=surface.centre_gap(w, d), p=surface.force(w, d),
                              area=area, a_c=radius)
