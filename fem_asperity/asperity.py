@@ -26,9 +26,10 @@ from .mesh import graded_mesh
 from .paths import equilibrium_curve, refine_force_extrema, walk
 from .surface import LJSurface
 
-#: BLAS threads while a curve is traced. Its dense factorisations (n ≈ 100-3000) ran 2.7x slower
-#: with 2 OpenBLAS threads than with 1 on the 2-core development machine (μ = 5, BEM `default`:
-#: 98 s against 36 s); the second core is better spent on a second curve.
+#: BLAS threads while a curve is set up and traced. Its dense factorisations (n ≈ 100-3000) ran
+#: 2.7x slower with 2 OpenBLAS threads than with 1 on the 2-core development machine (μ = 5, BEM
+#: `default`: 98 s against 36 s), and so did the FE condensation beside a second job (μ = 5: 31 s
+#: against 12 s); the second core is better spent on a second curve.
 PATH_BLAS_THREADS = 1
 
 #: Event keys compared between the two meshes of the error estimate.
@@ -117,9 +118,9 @@ def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, progress=No
     """One curve on the given `accuracy.Discretisation` (no error estimate, inputs unchecked
     beyond the discretisation's own): for studies that set the resolution themselves."""
     start = time.perf_counter()
-    half_space = elastic_surface(disc, solid)
-    surface = LJSurface(half_space, mu, radius_ratio=radius_ratio)
     with threadpool_limits(PATH_BLAS_THREADS, user_api="blas"):
+        half_space = elastic_surface(disc, solid)
+        surface = LJSurface(half_space, mu, radius_ratio=radius_ratio)
         traced = trace(surface, disc.trace, progress=progress)
         refine_force_extrema(surface, traced)
         curve = equilibrium_curve(traced)

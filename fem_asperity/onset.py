@@ -15,10 +15,11 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.optimize import brentq
+from threadpoolctl import threadpool_limits
 
 from ._checks import InputError
 from .accuracy import discretisation
-from .asperity import elastic_surface
+from .asperity import PATH_BLAS_THREADS, elastic_surface
 from .continuation import trace
 from .curve import parabola_vertex
 from .surface import LJSurface
@@ -28,7 +29,8 @@ def fold_margin(mu, *, method="bem", accuracy="default"):
     """max over the equilibrium curve of dδ̄o/ds (unit tangent in x̄o, δ̄o, P̄): > 0 iff folds."""
     disc = discretisation(mu, accuracy, method=method)
     settings = replace(disc.trace, turn=0.2 * disc.trace.turn)
-    traced = trace(LJSurface(elastic_surface(disc), mu), settings)
+    with threadpool_limits(PATH_BLAS_THREADS, user_api="blas"):
+        traced = trace(LJSurface(elastic_surface(disc), mu), settings)
     slope = np.array(traced.tangents)[:, 1]
     o = np.column_stack([traced.x, traced.delta, traced.p])
     arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(o, axis=0), axis=1))])
