@@ -59,6 +59,9 @@ def build_parser():
     curve.add_argument("--layer-nu", type=float, help="layer Poisson's ratio (default: --nu)")
     curve.add_argument("--no-error-estimate", action="store_true",
                        help="skip the second, coarser mesh (about a third faster)")
+    curve.add_argument("--unstable-branch", action="store_true",
+                       help="also trace the unstable branches (the whole S-shaped curve in "
+                            "equilibrium.csv and curve.png; about twice the cost at mu = 5)")
     curve.add_argument("--out", help="folder for curve CSVs, curve.png, result.json, VTU/PNG fields")
     curve.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
@@ -124,11 +127,12 @@ def _curve(args, parser):
     try:
         if args.tolerance is not None:
             result = solve_to_tolerance(args.mu, args.tolerance, method=args.method,
-                                        solid=solid, progress=bar)
+                                        solid=solid, unstable_branch=args.unstable_branch,
+                                        progress=bar)
         else:
             result = solve_curve(args.mu, method=args.method, accuracy=args.accuracy,
                                  solid=solid, error_estimate=not args.no_error_estimate,
-                                 progress=bar)
+                                 unstable_branch=args.unstable_branch, progress=bar)
     except ContinuationError as exc:
         print(f"{PROG}: continuation failed: {exc}", file=sys.stderr)
         return 1

@@ -19,11 +19,12 @@ from threadpoolctl import threadpool_limits
 from ._checks import InputError, in_range, positive
 from .accuracy import discretisation
 from .bem import BoussinesqSurface, radial_grid
-from .continuation import ContinuationError, trace
+from .continuation import ContinuationError
 from .curve import Curve, Events, read_events
 from .elastic import HalfSpace, Solid
 from .mesh import graded_mesh
-from .paths import equilibrium_curve, refine_force_extrema, walk
+from .branches import stable_paths
+from .paths import whole_curve_paths
 from .surface import LJSurface
 
 #: BLAS threads while a curve is set up and traced. Its dense factorisations (n ≈ 100-3000) ran
@@ -50,12 +51,14 @@ class Model:
 class CurveResult:
     """One approach + retraction at Tabor parameter `mu`, and how it was obtained.
 
-    equilibrium: the traced equilibrium curve (stable and unstable branches).
+    equilibrium: the traced equilibrium curve: with `unstable_branch` the whole curve, else the
+        stable branches the paths visit, one after the other (`branch` numbers them).
     approach, retraction: the paths under δ̄o control (jumps as consecutive points at equal δ̄o).
     events: `Events` read off the paths. error_estimate: |event − event on the coarser mesh| per
     key (None where not estimated). dofs, surface_nodes, points, newton_iterations, wall_s: cost.
-    message: how many folds the equilibrium curve has, and a warning when there are more than
-    the two of one jump-in/jump-out (the sign of a surface mesh too coarse for μ).
+    folds: folds of δ̄o met: changes of stability along the whole curve, or jumps of the paths.
+    message: how many folds, and a warning when there are more than the two of one jump-in and
+    one jump-out (the sign of a surface mesh too coarse for μ).
     """
 
     mu: float
@@ -71,14 +74,10 @@ class CurveResult:
     points: int
     newton_iterations: int
     wall_s: float
+    folds: int = 0
     method: str = "fem"
     message: str = ""
     model: Model | None = field(default=None, repr=False, compare=False)
-
-    @property
-    def folds(self):
-        """Folds of δ̄o along the equilibrium curve (changes of stability)."""
-        return int(self.equilibrium.branch.max())
 
     @property
     def ripples(self):
@@ -114,19 +113,18 @@ def elastic_surface(disc, solid=Solid()):
     return HalfSpace(mesh, order=disc.order, solid=solid)
 
 
-def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, progress=None):
+def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, unstable_branch=False,
+                      progress=None):
     """One curve on the given `accuracy.Discretisation` (no error estimate, inputs unchecked
     beyond the discretisation's own): for studies that set the resolution themselves."""
     start = time.perf_counter()
     with threadpool_limits(PATH_BLAS_THREADS, user_api="blas"):
         half_space = elastic_surface(disc, solid)
         surface = LJSurface(half_space, mu, radius_ratio=radius_ratio)
-        traced = trace(surface, disc.trace, progress=progress)
-        refine_force_extrema(surface, traced)
-        curve = equilibrium_curve(traced)
-        order = np.arange(len(curve))
-        approach, jumps_in = walk(surface, traced, curve, order)
-        retraction, jumps_out = walk(surface, traced, curve, order[::-1])
+        solve = whole_curve_paths if unstable_branch else stable_paths
+        approach, retraction, jumps_in, jumps_out, curve, traced = solve(surface, disc.trace,
+                                                                         progress)
+    folds = int(curve.branch.max()) if unstable_branch else len(jumps_in) + len(jumps_out)
     result = CurveResult(
         mu=mu,
         accuracy=disc.name,
@@ -141,10 +139,11 @@ def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, progress=No
         points=len(curve),
         newton_iterations=traced.newton_iterations,
         wall_s=time.perf_counter() - start,
+        folds=folds,
         method=disc.method,
         model=Model(half_space, surface, traced),
     )
-    message = f"{result.folds} folds of the equilibrium curve"
+    message = f"{folds} folds of the equilibrium curve"
     if result.ripples:
         message += (" (more than one jump-in and one jump-out: probably ripple from a surface "
                     "mesh too coarse for this mu; try a finer accuracy)")
@@ -159,7 +158,7 @@ def _difference(fine, coarse):
 
 
 def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_ratio=None,
-                p_end=1.0, error_estimate=True, progress=None):
+                p_end=1.0, error_estimate=True, unstable_branch=False, progress=None):
     """Approach and retraction of a rigid sphere on the half-space at Tabor parameter `mu`.
 
     method: 'fem' (finite elements, layers allowed) or 'bem' (boundary integral, homogeneous).
@@ -167,6 +166,9 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     solid: `Solid` (homogeneous by default; a layer with thickness in √(Rε)).
     radius_ratio: R/ε for the exact sphere profile instead of Derjaguin's parabola (None).
     p_end: the approach goes on until P̄ reaches this compressive force (2πRΔγ units).
+    unstable_branch: also trace the unstable branches between the folds, so that `equilibrium`
+        is the whole S-shaped curve (about twice the cost at μ = 5); by default only the stable
+        branches are traced and each jump lands by energy descent (`branches`).
     error_estimate: also solve with twice as large surface elements (and turn limit, and a
         steeper far-field grading) and report the change of every event. That solve runs
         alongside on the second core; if it fails, the estimate is None and `message` says why
@@ -179,7 +181,7 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     if radius_ratio is not None:
         in_range("radius_ratio", radius_ratio, 10.0, np.inf, closed_lo=True)
     disc = discretisation(mu, accuracy, p_end=p_end, method=method)
-    options = dict(solid=solid, radius_ratio=radius_ratio)
+    options = dict(solid=solid, radius_ratio=radius_ratio, unstable_branch=unstable_branch)
     if not error_estimate:
         return solve_discretised(mu, disc, progress=progress, **options)
     start = time.perf_counter()
@@ -206,7 +208,7 @@ TOLERANCE_KEYS = ("p_max", "p_off")
 
 
 def solve_to_tolerance(mu, tolerance, *, method="fem", solid=Solid(), radius_ratio=None,
-                       p_end=1.0, max_levels=5, progress=None):
+                       p_end=1.0, max_levels=5, unstable_branch=False, progress=None):
     """Refine from `draft` (halving the surface elements and the turn limit) until P̄max and
     P̄off change by at most `tolerance` (relative) between two levels; the finer one is returned
     with those changes as its error estimate. If `max_levels` do not get there, the last level
@@ -217,7 +219,8 @@ def solve_to_tolerance(mu, tolerance, *, method="fem", solid=Solid(), radius_rat
 
     def level(k, d):
         report = (lambda f: progress((k + f) / max_levels)) if progress else None
-        return solve_discretised(mu, d, solid=solid, radius_ratio=radius_ratio, progress=report)
+        return solve_discretised(mu, d, solid=solid, radius_ratio=radius_ratio,
+                                 unstable_branch=unstable_branch, progress=report)
 
     previous, wall = level(0, disc), 0.0
     for k in range(1, max_levels):

@@ -15,6 +15,8 @@ from scipy.linalg import LinAlgError, cho_factor, cho_solve, lu_factor, lu_solve
 
 #: A Newton step never lets a gap fall below this fraction of its current value.
 _GAP_KEEP = 0.2
+#: Heading in (x̄o, δ̄o, P̄) of an approach from far away (gap and δ̄o decreasing).
+APPROACH = np.array([-1.0, -1.0, 0.0])
 
 
 class ContinuationError(RuntimeError):
@@ -52,6 +54,9 @@ class TraceSettings:
     max_points: int = 20000
 
 
+_POINT_FIELDS = ("delta", "x", "p", "area", "a_c", "stable", "tangents", "states")
+
+
 @dataclass
 class Trace:
     """Raw continuation output, one entry per converged point, ordered along the curve."""
@@ -72,13 +77,24 @@ class Trace:
         d(x̄o, δ̄o, P̄)/ds, computed by the caller."""
         self.insert(len(self.delta), surface, w, delta, stable, force, contact, tangent)
 
+    def extend(self, other):
+        """Append the points of the Trace `other` and add its counters."""
+        for name in _POINT_FIELDS:
+            getattr(self, name).extend(getattr(other, name))
+        self.newton_iterations += other.newton_iterations
+        self.rejected_steps += other.rejected_steps
+
+    def drop_last(self):
+        """Remove the last point."""
+        for name in _POINT_FIELDS:
+            getattr(self, name).pop()
+
     def insert(self, index, surface, w, delta, stable, force, contact, tangent):
         """As `append`, at position `index` along the curve."""
         area, radius = contact
         values = (delta, surface.centre_gap(w, delta), force, area, radius, stable, tangent,
                   w.copy())
-        for name, value in zip(("delta", "x", "p", "area", "a_c", "stable", "tangents", "states"),
-                               values):
+        for name, value in zip(_POINT_FIELDS, values):
             getattr(self, name).insert(index, value)
 
 
@@ -211,30 +227,35 @@ def _predict(trace_so_far, tangent, ds):
     return w_guess, d_guess
 
 
-def trace(surface, settings=TraceSettings(), progress=None):
-    """Trace the equilibrium curve from x̄o = x_start (δ decreasing) until P̄ ≥ p_end, stable.
+def start_state(surface, settings):
+    """(w, δ, Newton iterations) of the equilibrium at the centre gap x̄o = settings.x_start."""
+    x = settings.x_start
+    start = correct(surface, np.zeros(surface.r_nodes.size), x, np.array([1.0, 0.0, 0.0]),
+                    np.array([x, 0.0, 0.0]), 0.0, tol=settings.tol)
+    if start is None:
+        raise ContinuationError(f"no equilibrium found at the start x = {x}")
+    return start[:3]
 
-    `progress(fraction)` is called after each accepted point. Raises ContinuationError if the
-    step falls below ds_min or the point budget runs out.
+
+def follow(surface, w, delta, heading, settings, *, until, stop_at_fold=False, on_point=None):
+    """Trace the equilibrium curve from the equilibrium (w, δ), setting off in the direction with
+    heading · d(x̄o, δ̄o, P̄)/ds > 0, until `until(trace)` holds at a stable point or, with
+    `stop_at_fold`, up to the first unstable point (kept as the trace's last point).
+
+    `on_point(trace)` is called after each accepted point. Raises ContinuationError if the step
+    falls below ds_min, the point budget runs out or the path runs off beyond 2 x_start.
     """
     s = settings
     result = Trace()
-    n = surface.r_nodes.size
-    gap_control = np.array([1.0, 0.0, 0.0])
-    start = correct(surface, np.zeros(n), s.x_start, gap_control, np.array([s.x_start, 0, 0]),
-                    0.0, tol=s.tol)
-    if start is None:
-        raise ContinuationError(f"no equilibrium found at the start x = {s.x_start}")
-    w, delta, its, _ = start
-    result.newton_iterations += its
-    row = np.array([-1.0, -1.0, 0.0]) / np.sqrt(2.0)
+    row = np.asarray(heading, dtype=float) / np.linalg.norm(heading)
     linear = Linearisation(surface, w, delta, row)
     tangent = linear.tangent()
     result.append(surface, w, delta, linear.stable, surface.force(w, delta),
                   surface.contact(w, delta), tangent[2])
     ds, ds_cap = 0.1, np.inf  # ds_cap: 0.7 × the last step Newton failed on, relaxed 50% per point
-    log_span = np.log(s.x_start / 0.8)
-    while result.p[-1] < s.p_end or not result.stable[-1]:
+    while not (result.stable[-1] and until(result)):
+        if stop_at_fold and not result.stable[-1]:
+            break
         if len(result.delta) >= s.max_points:
             raise ContinuationError(f"point budget of {s.max_points} exhausted at δ = {delta:.6g}")
         if result.x[-1] > 2.0 * s.x_start:
@@ -258,8 +279,8 @@ def trace(surface, settings=TraceSettings(), progress=None):
             if ratio <= 1.0 or ds <= s.ds_min:
                 w, delta, row, tangent = w_new, d_new, t, tangent_new
                 result.append(surface, w, delta, linear.stable, force, contact, tangent[2])
-                if progress is not None:
-                    progress(min(1.0, np.log(s.x_start / max(result.x[-1], 1e-3)) / log_span))
+                if on_point is not None:
+                    on_point(result)
                 effort = min(1.0, s.target_newton / its)
                 ds_cap *= 1.5
                 ds = min(ds * min(2.0, 0.8 / ratio) * effort, s.ds_max, ds_cap)
@@ -272,3 +293,23 @@ def trace(surface, settings=TraceSettings(), progress=None):
             raise ContinuationError(f"Newton failed at the smallest step near δ = {delta:.6g}")
         ds = max(ds_next, s.ds_min)
     return result
+
+
+def trace(surface, settings=TraceSettings(), progress=None):
+    """Trace the whole equilibrium curve, unstable branches included, from x̄o = x_start (δ
+    decreasing) until P̄ ≥ p_end at a stable point.
+
+    `progress(fraction)` is called after each accepted point. Raises ContinuationError as
+    `follow`.
+    """
+    w, delta, its = start_state(surface, settings)
+    report = (lambda tr: progress(approach_fraction(tr.x[-1], settings))) if progress else None
+    result = follow(surface, w, delta, APPROACH, settings,
+                    until=lambda tr: tr.p[-1] >= settings.p_end, on_point=report)
+    result.newton_iterations += its
+    return result
+
+
+def approach_fraction(x, settings):
+    """Progress of an approach at the centre gap x̄o: log(x_start/x̄o) / log(x_start/0.8), ≤ 1."""
+    return min(1.0, np.log(settings.x_start / max(x, 1e-3)) / np.log(settings.x_start / 0.8))

@@ -30,6 +30,12 @@ def scaled_traction(h):
     return 8.0 / 3.0 * (s3 * s3 * s3 - s3)
 
 
+def scaled_potential(h):
+    """φ̄(h̄) = ∫_h̄^∞ p̄ = (1/3)h̄⁻⁸ − (4/3)h̄⁻² in Δγ (φ̄(1) = −1: the work of adhesion), unchecked."""
+    s2 = h**-2.0
+    return (s2**4 - 4.0 * s2) / 3.0
+
+
 def scaled_traction_slope(h):
     """dp̄/dh̄ = (8/3)(−9h̄⁻¹⁰ + 3h̄⁻⁴) in Δγ/ε², unchecked (inner loops; h̄ > 0)."""
     s = 1.0 / h

@@ -33,7 +33,8 @@ def plot_curve(result, path):
     eq = result.equilibrium
     for ax, column, label in zip(axes, ("p", "a_c"), ("P̄ = P/(2πRΔγ)", "ā_c = a_c/√(εR)")):
         values = getattr(eq, column)
-        ax.plot(eq.delta, np.where(eq.stable, np.nan, values), "k--", lw=1, label="unstable")
+        if not eq.stable.all():
+            ax.plot(eq.delta, np.where(eq.stable, np.nan, values), "k--", lw=1, label="unstable")
         ax.plot(result.approach.delta, getattr(result.approach, column), "-", color="tab:blue",
                 lw=1.5, label="approach")
         ax.plot(result.retraction.delta, getattr(result.retraction, column), "-",

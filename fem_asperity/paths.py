@@ -9,21 +9,51 @@ next stable branch that the curve reaches at the same δ̄o (the landing, solved
 import numpy as np
 from scipy.optimize import brentq
 
-from .continuation import ContinuationError, Linearisation, correct
+from .continuation import ContinuationError, Linearisation, correct, trace
 from .curve import Jump, parabola_vertex, curve_from_columns
 
 _COLUMNS = ("delta", "x", "p", "area", "a_c")
 
 
+def root_along(surface, trace, k, component, *, xtol=1e-9):
+    """The point between trace points k and k + 1 where the `component` (0: x̄o, 1: δ̄o, 2: P̄) of
+    the unit tangent vanishes, as (w, δ, Linearisation), or None if there is no clean root.
+
+    The root in the arc length σ ∈ (0, σ₁) along the tangent at k is found by Brent's method,
+    each evaluation a converged point (`correct`) and its exact tangent; it needs the component
+    to change sign between k and k + 1."""
+    t0 = trace.tangents[k]
+    anchor = np.array([trace.x[k], trace.delta[k], trace.p[k]])
+    end = float(t0 @ (np.array([trace.x[k + 1], trace.delta[k + 1], trace.p[k + 1]]) - anchor))
+    states = {}
+
+    def slope(sigma):
+        frac = sigma / end
+        guess = (1.0 - frac) * trace.states[k] + frac * trace.states[k + 1]
+        d_guess = (1.0 - frac) * trace.delta[k] + frac * trace.delta[k + 1]
+        solved = correct(surface, guess, d_guess, t0, anchor, sigma)
+        if solved is None:
+            raise ContinuationError(f"no equilibrium near δ = {d_guess:.6g}")
+        w, d, _, _ = solved
+        linear = Linearisation(surface, w, d, t0)
+        states[sigma] = (w, d, linear)
+        return linear.tangent()[2][component]
+
+    try:
+        sigma = brentq(slope, 0.0, end, xtol=xtol * max(end, 1.0), rtol=1e-12)
+    except (ContinuationError, ValueError):  # no clean root here (e.g. ripple)
+        return None
+    return states[sigma] if sigma in states and 0.0 < sigma < end else None
+
+
 def refine_force_extrema(surface, trace, *, xtol=1e-9):
     """Insert into `trace` the exact extrema of P̄ between stable neighbouring samples.
 
-    Where the tangent's P̄ component dP̄/ds changes sign between samples k and k + 1, the root of
-    dP̄/ds in the arc length σ ∈ (0, σ₁) along the tangent at k is found by Brent's method, each
-    evaluation a converged point (`correct`) and its exact tangent. Sampled at a turn limit of
-    0.1 rad, the parabola through three samples alone misplaces P̄off by ~3e-5 at μ = 1.
-    Where no equilibrium is found inside the bracket (ripple of a too coarse surface mesh) the
-    samples are left as they are. Returns the number of points inserted.
+    Where the tangent's P̄ component dP̄/ds changes sign between samples k and k + 1, the root is
+    found by `root_along`. Sampled at a turn limit of 0.1 rad, the parabola through three
+    samples alone misplaces P̄off by ~3e-5 at μ = 1. Where no equilibrium is found inside the
+    bracket (ripple of a too coarse surface mesh) the samples are left as they are. Returns the
+    number of points inserted.
     """
     inserted = 0
     k = 0
@@ -32,28 +62,9 @@ def refine_force_extrema(surface, trace, *, xtol=1e-9):
         if not (trace.stable[k] and trace.stable[k + 1]) or t0[2] * t1[2] >= 0.0:
             k += 1
             continue
-        anchor = np.array([trace.x[k], trace.delta[k], trace.p[k]])
-        end = float(t0 @ (np.array([trace.x[k + 1], trace.delta[k + 1], trace.p[k + 1]]) - anchor))
-        states = {}
-
-        def slope(sigma, k=k, anchor=anchor, end=end, t0=t0, states=states):
-            frac = sigma / end
-            guess = (1.0 - frac) * trace.states[k] + frac * trace.states[k + 1]
-            d_guess = (1.0 - frac) * trace.delta[k] + frac * trace.delta[k + 1]
-            solved = correct(surface, guess, d_guess, t0, anchor, sigma)
-            if solved is None:
-                raise ContinuationError(f"no equilibrium at the extremum near δ = {d_guess:.6g}")
-            w, d, _, _ = solved
-            linear = Linearisation(surface, w, d, t0)
-            states[sigma] = (w, d, linear)
-            return linear.tangent()[2][2]
-
-        try:
-            sigma = brentq(slope, 0.0, end, xtol=xtol * max(end, 1.0), rtol=1e-12)
-        except (ContinuationError, ValueError):  # no clean extremum here (e.g. ripple)
-            sigma = None
-        if sigma is not None and sigma in states and 0.0 < sigma < end:
-            w, d, linear = states[sigma]
+        extremum = root_along(surface, trace, k, 2, xtol=xtol)
+        if extremum is not None:
+            w, d, linear = extremum
             trace.insert(k + 1, surface, w, d, linear.stable, surface.force(w, d),
                          surface.contact(w, d), linear.tangent()[2])
             inserted += 1
@@ -131,3 +142,15 @@ def walk(surface, trace, curve, order):
     columns = {c: [r[c] for r in rows] for c in (*_COLUMNS, "branch")}
     path = curve_from_columns(**columns, stable=np.ones(len(rows), dtype=bool))
     return path, jumps
+
+
+def whole_curve_paths(surface, settings, progress=None):
+    """(approach, retraction, jumps in, jumps out, equilibrium, traced) as
+    `branches.stable_paths`, read off the whole equilibrium curve, unstable branches included."""
+    traced = trace(surface, settings, progress=progress)
+    refine_force_extrema(surface, traced)
+    curve = equilibrium_curve(traced)
+    order = np.arange(len(curve))
+    approach, jumps_in = walk(surface, traced, curve, order)
+    retraction, jumps_out = walk(surface, traced, curve, order[::-1])
+    return approach, retraction, jumps_in, jumps_out, curve, traced

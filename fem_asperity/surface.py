@@ -9,6 +9,7 @@ h = δ + r²/2 − N w the Derjaguin gap (or the exact sphere profile, see `gap_
 import numpy as np
 from scipy.linalg import cho_factor, cho_solve
 
+from .lj import scaled_potential as potential
 from .lj import scaled_traction as traction
 from .lj import scaled_traction_slope as traction_slope
 
@@ -52,6 +53,11 @@ class LJSurface:
         """g(w, δ): out-of-balance surface loads (E* = 1 units)."""
         h = self.gap(w, delta)
         return self.stiffness @ w + self.load_factor * (self.interp_t @ (self.weights * traction(h)))
+
+    def energy(self, w, delta):
+        """E(w; δ) = ½ wᵀS w + μ^(3/2) Σ W φ̄(h), whose gradient in w is the residual g."""
+        return 0.5 * w @ (self.stiffness @ w) + self.load_factor * (
+            self.weights @ potential(self.gap(w, delta)))
 
     def tangent(self, w, delta):
         """(∂g/∂w, ∂g/∂δ, ∂P̄/∂δ, slope): the symmetric surface tangent in single precision (it is

@@ -1,16 +1,28 @@
 """The boundary-integral curve against the FE (two independent elastic solvers) and the onset."""
 
+from dataclasses import replace
+
+import numpy as np
 import pytest
 
 from fem_asperity import InputError
-from fem_asperity.asperity import ESTIMATED, solve_curve
+from fem_asperity.accuracy import discretisation
+from fem_asperity.asperity import ESTIMATED, solve_curve, solve_discretised
 from fem_asperity.elastic import Solid
 from fem_asperity.onset import fold_margin
 
 
+#: Events whose FE error estimate is no bound: the force just after the jump-in converges
+#: non-monotonically under refinement (μ = 3, FE: −0.7615474 coarse, −0.7615493 `default`,
+#: −0.7615607 at h/1.5, −0.7615617 `fine`; BEM reference −0.7615707), so the coarse-vs-default
+#: change (1.9e-6) understates the `default` error (2.1e-5). Checked to 1e-4 relative instead.
+NOT_BOUNDED = ("p_jump_after",)
+
+
 @pytest.mark.parametrize("mu", [0.1, 0.5, 1.0, 3.0])
 def test_bem_agrees_with_fem_within_the_fem_error_estimate(mu):
-    """Every event of the BEM lies within the FE's own error estimate, both at `default`.
+    """Every event of the BEM lies within the FE's own error estimate, both at `default`
+    (except NOT_BOUNDED).
 
     (At `draft` the FE's estimate is not always a bound: at μ = 0.1 it says 9e-6 for δ̄o*,
     whose draft error is 4.2e-5, and at μ = 3 2.5e-4 for the jump-in δ̄o, off by 4.0e-4.)"""
@@ -21,8 +33,10 @@ def test_bem_agrees_with_fem_within_the_fem_error_estimate(mu):
     for key in ESTIMATED:
         if a[key] is None:
             assert b[key] is None, key
-            continue
-        assert abs(a[key] - b[key]) <= fem.error_estimate[key], key
+        elif key in NOT_BOUNDED:
+            assert abs(a[key] - b[key]) <= 1e-4 * abs(b[key]), key
+        else:
+            assert abs(a[key] - b[key]) <= fem.error_estimate[key], key
 
 
 def test_bem_result_provenance():
@@ -81,3 +95,38 @@ def test_tolerance_driven_solve_meets_its_tolerance():
     assert "met after" in result.message and result.accuracy == "tolerance 1e-06"
     assert result.error_estimate["p_off"] <= 1e-6 * abs(result.events.p_off)
     assert result.events.p_off == pytest.approx(-0.8353323349, rel=2e-6)
+
+
+def test_stable_branches_give_the_paths_of_the_whole_curve():
+    """The default paths (stable branches only, each jump landed by energy descent) against the
+    paths read off the whole traced curve: the force extrema agree to 1e-7; at the folds the
+    whole curve's parabola through three samples closes in on the default's exact root of
+    dδ̄o/ds as the turn limit shrinks (μ = 2, BEM `draft`)."""
+    disc = discretisation(2.0, "draft", method="bem")
+    fast = solve_discretised(2.0, disc).events.records()
+    whole = solve_discretised(2.0, disc, unstable_branch=True).events.records()
+    for key in ("p_max", "delta_oc", "a_c", "p_off"):
+        assert fast[key] == pytest.approx(whole[key], rel=1e-7), key
+    misses = []
+    for turn in (0.2, 0.05):
+        fine_steps = replace(disc, trace=replace(disc.trace, turn=turn))
+        whole = solve_discretised(2.0, fine_steps, unstable_branch=True).events.records()
+        misses.append(abs(whole["x_oc"] - fast["x_oc"]))
+    assert misses[1] < 0.25 * misses[0]
+
+
+def test_energy_descent_lands_where_newton_on_the_traced_branch_does():
+    """Both jumps of the whole curve at μ = 2: `land` from the first unstable point past each
+    fold, at the fold's δ̄o, reaches the state that Newton from the traced stable branch found."""
+    from fem_asperity.landing import land
+
+    result = solve_discretised(2.0, discretisation(2.0, "draft", method="bem"),
+                               unstable_branch=True)
+    surface, traced = result.model.surface, result.model.trace
+    stable = np.asarray(traced.stable)
+    folds = np.nonzero(stable[:-1] != stable[1:])[0]
+    jumps = (result.events.jump_in, result.events.jump_out)
+    for k, jump in zip(folds, jumps):
+        beyond = k + 1 if stable[k] else k  # the unstable point next to the fold
+        w, _ = land(surface, traced.states[beyond], jump.delta)
+        assert surface.force(w, jump.delta) == pytest.approx(jump.p_after, rel=1e-8)

@@ -155,7 +155,7 @@ def test_curve_bad_input_is_one_line_exit_2(args):
 def test_curve_bem_json_and_files(tmp_path):
     out = tmp_path / "bem"
     done = cli("fem_asperity", "curve", "--mu", "1", "--method", "bem", "--accuracy", "draft",
-               "--json", "--out", str(out))
+               "--unstable-branch", "--json", "--out", str(out))
     assert done.returncode == 0, done.stderr
     events = json.loads(done.stdout)
     assert CURVE_KEYS <= set(events) and events["method"] == "bem"
@@ -163,6 +163,8 @@ def test_curve_bem_json_and_files(tmp_path):
     assert events["dofs"] == events["surface_nodes"]
     assert {p.name for p in out.iterdir()} == {"approach.csv", "retraction.csv",
                                                 "equilibrium.csv", "result.json", "curve.png"}
+    rows = (out / "equilibrium.csv").read_text().splitlines()[1:]
+    assert any(row.split(",")[5] == "0" for row in rows)  # the unstable branch is in it
 
 
 def test_onset_json():

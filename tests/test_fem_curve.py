@@ -64,7 +64,8 @@ def test_jump_in_and_hysteresis_at_mu_2():
     assert ev.jump_in.p_after < ev.jump_in.p_before  # snaps into stronger attraction
     assert ev.jump_out.p_after > ev.jump_out.p_before  # snaps off to weak attraction
     assert ev.jump_in.x_before > 1.0 and ev.jump_in.x_after < ev.jump_in.x_before
-    assert (~result.equilibrium.stable).any()
+    assert result.equilibrium.stable.all()  # only the stable branches were traced
+    assert (~curve(2.0, unstable_branch=True).equilibrium.stable).any()  # the whole S-curve
     # between the two jumps approach and retraction are on different branches
     mid = 0.5 * (ev.jump_in.delta + ev.jump_out.delta)
     a, r = result.approach, result.retraction

@@ -12,6 +12,8 @@ from fem_asperity.lj import (
     K_9_3,
     bradley_force,
     centre_deflection,
+    scaled_potential,
+    scaled_traction,
     separation_from_gap,
     traction,
     traction_slope,
@@ -90,3 +92,11 @@ def test_non_positive_gaps_are_refused(bad):
         bradley_force(bad)
     with pytest.raises(InputError, match="x must be"):
         centre_deflection(bad, mu=1.0)
+
+
+def test_potential_is_the_integral_of_the_traction():
+    h = np.linspace(0.8, 5.0, 50)
+    step = 1e-6
+    slope = (scaled_potential(h + step) - scaled_potential(h - step)) / (2 * step)
+    np.testing.assert_allclose(slope, -scaled_traction(h), rtol=1e-7, atol=1e-9)
+    assert scaled_potential(1.0) == pytest.approx(-1.0)  # minus the work of adhesion

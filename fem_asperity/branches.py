@@ -1,0 +1,167 @@
+"""Approach and retraction along the stable branches only, each jump landed by energy descent.
+
+The approach follows the stable branch from far away until it folds, jumps at the fold's δ̄o to
+the stable state found downhill in energy (`landing.land`) and goes on from there, until P̄ ≥
+p_end. The retraction walks back along the branches the approach visited and traces only what the
+approach did not: from each landing onward in δ̄o, until that branch folds and the solid jumps
+off; where it lands on an approach branch it walks back along that. The unstable branches (LU
+factorisations and short steps, half the cost of the whole curve at μ = 5, most of an hour at
+μ = 10) are never traced; `paths` reads the same paths off the whole curve instead.
+"""
+
+import numpy as np
+
+from .continuation import (APPROACH, ContinuationError, Trace, approach_fraction, follow,
+                           start_state)
+from .curve import Jump, curve_from_columns
+from .landing import land
+from .paths import _COLUMNS, _fold, equilibrium_curve, refine_force_extrema, root_along
+
+#: Headings in (x̄o, δ̄o, P̄) from a landing: a stable branch always moves in δ̄o.
+_DOWN, _UP = np.array([0.0, -1.0, 0.0]), np.array([0.0, 1.0, 0.0])
+#: Most jumps one path may make (ripple of a far too coarse mesh, or a landing that loops).
+MAX_JUMPS = 200
+
+
+def _branch(surface, w, delta, heading, settings, until, on_point):
+    """(stable Trace from (w, δ) with its force extrema refined, fold, state past the fold):
+    fold = (δ̄o, values before) at the branch's end, or None if `until` was met.
+
+    The fold is where dδ̄o/ds = 0 between the last stable and the first unstable point
+    (`paths.root_along`); where that root is not clean (ripple), the parabola in arc length
+    through the last three points (`paths._fold`), or the start if the branch has no more."""
+    traced = follow(surface, w, delta, heading, settings, until=until, stop_at_fold=True,
+                    on_point=on_point)
+    fold = beyond = None
+    if not traced.stable[-1]:
+        k = len(traced.delta) - 2
+        exact = root_along(surface, traced, k, 1)
+        if exact is not None:
+            w_f, d_f, _ = exact
+            fold = float(d_f), dict(x=surface.centre_gap(w_f, d_f), p=surface.force(w_f, d_f),
+                             a_c=surface.contact(w_f, d_f)[1])
+        elif k >= 1:
+            fold = _fold(equilibrium_curve(traced), k, k + 1, descending=heading[1] < 0)
+        else:
+            fold = traced.delta[0], {c: getattr(traced, c)[0] for c in ("x", "p", "a_c")}
+        fold[1]["area"] = 0.0 if fold[1]["a_c"] <= 0.0 else np.pi * fold[1]["a_c"] ** 2
+        beyond = traced.states[-1]
+        traced.drop_last()
+    refine_force_extrema(surface, traced)
+    return traced, fold, beyond
+
+
+def _jump(surface, fold, beyond, settings, counter):
+    """Land past `fold` downhill from the unstable state `beyond`: (w, Jump)."""
+    delta, before = fold
+    landed = land(surface, beyond, delta, tol=settings.tol)
+    if landed is None:
+        raise ContinuationError(f"no stable state found downhill at the jump at δ = {delta:.6g}")
+    w, its = landed
+    counter.newton_iterations += its
+    x, p = surface.centre_gap(w, delta), surface.force(w, delta)
+    if abs(x - before["x"]) <= 1e-9 * (1.0 + abs(x)):
+        raise ContinuationError(f"the jump at δ = {delta:.6g} landed back on its own branch")
+    return w, Jump(delta=delta, x_before=before["x"], p_before=before["p"], p_after=p,
+                   a_c_after=surface.contact(w, delta)[1], x_after=x)
+
+
+def _rows(trace, branch, points):
+    return [{c: getattr(trace, c)[i] for c in _COLUMNS} | {"branch": branch} for i in points]
+
+
+def _approach_branch(branches, delta, x, jump):
+    """(j, c): the approach branch j whose δ̄o range holds `delta` with x̄o there within 1% of the
+    jump size of `x`, and its count c of points with larger δ̄o; None if there is none."""
+    for j, traced in enumerate(branches):
+        d, xs = np.asarray(traced.delta), np.asarray(traced.x)
+        if d[-1] <= delta <= d[0] and abs(np.interp(delta, d[::-1], xs[::-1]) - x) <= 0.01 * jump:
+            return j, int(np.sum(d > delta))
+    return None
+
+
+def stable_paths(surface, settings, progress=None):
+    """(approach, retraction, jumps in, jumps out, equilibrium, traced): the two paths under δ̄o
+    control (as `paths.walk`), the stable branches traced as one `Curve` (approach branches
+    first, `branch` numbering them) and as one Trace (states, counters: landings included).
+
+    `progress(fraction)`: the approach runs to 0.85 (log of the centre gap), the retraction on.
+    Raises ContinuationError where a branch cannot be followed or a jump finds no landing.
+    """
+    traced = Trace()
+    w, delta, traced.newton_iterations = start_state(surface, settings)
+    report = (lambda tr: progress(0.85 * approach_fraction(tr.x[-1], settings))) if progress else None
+
+    def reached_end(tr):
+        return tr.p[-1] >= settings.p_end
+
+    branches, approach, jumps_in, heading = [], [], [], APPROACH
+    while True:
+        branch, fold, beyond = _branch(surface, w, delta, heading, settings, reached_end, report)
+        branches.append(branch)
+        approach += _rows(branch, len(jumps_in), range(len(branch.delta)))
+        if fold is None:
+            break
+        if len(jumps_in) >= MAX_JUMPS:
+            raise ContinuationError(f"more than {MAX_JUMPS} jumps on approach")
+        approach.append(dict(delta=fold[0], **fold[1], branch=len(jumps_in)))
+        w, jump = _jump(surface, fold, beyond, settings, traced)
+        jumps_in.append(jump)
+        delta, heading = fold[0], _DOWN
+    retraction, jumps_out, extra = _retract(surface, settings, branches, traced, progress)
+    ids = []
+    for k, branch in enumerate(branches + extra):
+        traced.extend(branch)
+        ids += [k] * len(branch.delta)
+    equilibrium = curve_from_columns(*(getattr(traced, c) for c in _COLUMNS),
+                                     np.ones(len(ids), dtype=bool), ids)
+    if progress is not None:
+        progress(1.0)
+    return _path(approach), _path(retraction), jumps_in, jumps_out, equilibrium, traced
+
+
+def _retract(surface, settings, branches, counter, progress):
+    """(rows, jumps, branches traced): back along approach branch j from its point c − 1, then on
+    from its first point (a landing) by tracing, until a branch reaches x_start again."""
+    rows, jumps, extra = [], [], []
+    j, c = len(branches) - 1, len(branches[-1].delta)
+    n_approach = sum(len(b.delta) for b in branches)
+
+    def report(tr):
+        if progress is not None:
+            done = sum(len(b.delta) for b in extra) + len(tr.delta)
+            progress(0.85 + 0.15 * min(1.0, done / n_approach))
+
+    def far(tr):
+        return tr.x[-1] >= settings.x_start
+
+    while True:
+        rows += _rows(branches[j], len(jumps), range(c - 1, -1, -1))
+        if j == 0:
+            return rows, jumps, extra
+        w, delta, skip = branches[j].states[0], branches[j].delta[0], 1
+        while True:
+            branch, fold, beyond = _branch(surface, w, delta, _UP, settings, far, report)
+            extra.append(branch)
+            rows += _rows(branch, len(jumps), range(skip, len(branch.delta)))
+            if fold is None:
+                return rows, jumps, extra
+            if len(jumps) >= MAX_JUMPS:
+                raise ContinuationError(f"more than {MAX_JUMPS} jumps on retraction")
+            rows.append(dict(delta=fold[0], **fold[1], branch=len(jumps)))
+            w, jump = _jump(surface, fold, beyond, settings, counter)
+            jumps.append(jump)
+            delta, skip = fold[0], 0
+            known = _approach_branch(branches, delta, jump.x_after,
+                                     abs(jump.x_after - jump.x_before))
+            if known is not None:
+                area, radius = surface.contact(w, delta)
+                rows.append(dict(delta=delta, x=jump.x_after, p=jump.p_after, area=area,
+                                 a_c=radius, branch=len(jumps)))
+                j, c = known
+                break
+
+
+def _path(rows):
+    columns = {c: [r[c] for r in rows] for c in (*_COLUMNS, "branch")}
+    return curve_from_columns(**columns, stable=np.ones(len(rows), dtype=bool))
