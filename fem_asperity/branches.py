@@ -15,7 +15,8 @@ from .continuation import (APPROACH, ContinuationError, Trace, approach_fraction
                            start_state)
 from .curve import Jump, curve_from_columns
 from .landing import land
-from .paths import _COLUMNS, _fold, equilibrium_curve, refine_force_extrema, root_along
+from .paths import (COLUMNS, equilibrium_curve, fold_by_parabola, path_from_rows,
+                    refine_force_extrema, root_along)
 
 #: Headings in (x̄o, δ̄o, P̄) from a landing: a stable branch always moves in δ̄o.
 _DOWN, _UP = np.array([0.0, -1.0, 0.0]), np.array([0.0, 1.0, 0.0])
@@ -29,7 +30,8 @@ def _branch(surface, w, delta, heading, settings, until, on_point):
 
     The fold is where dδ̄o/ds = 0 between the last stable and the first unstable point
     (`paths.root_along`); where that root is not clean (ripple), the parabola in arc length
-    through the last three points (`paths._fold`), or the start if the branch has no more."""
+    through the last three points (`paths.fold_by_parabola`), or the start if the branch has
+    no more."""
     traced = follow(surface, w, delta, heading, settings, until=until, stop_at_fold=True,
                     on_point=on_point)
     fold = beyond = None
@@ -41,7 +43,8 @@ def _branch(surface, w, delta, heading, settings, until, on_point):
             fold = float(d_f), dict(x=surface.centre_gap(w_f, d_f), p=surface.force(w_f, d_f),
                              a_c=surface.contact(w_f, d_f)[1])
         elif k >= 1:
-            fold = _fold(equilibrium_curve(traced), k, k + 1, descending=heading[1] < 0)
+            fold = fold_by_parabola(equilibrium_curve(traced), k, k + 1,
+                                    descending=heading[1] < 0)
         else:
             fold = traced.delta[0], {c: getattr(traced, c)[0] for c in ("x", "p", "a_c")}
         fold[1]["area"] = 0.0 if fold[1]["a_c"] <= 0.0 else np.pi * fold[1]["a_c"] ** 2
@@ -67,7 +70,7 @@ def _jump(surface, fold, beyond, settings, counter):
 
 
 def _rows(trace, branch, points):
-    return [{c: getattr(trace, c)[i] for c in _COLUMNS} | {"branch": branch} for i in points]
+    return [{c: getattr(trace, c)[i] for c in COLUMNS} | {"branch": branch} for i in points]
 
 
 def _approach_branch(branches, delta, x, jump):
@@ -113,11 +116,11 @@ def stable_paths(surface, settings, progress=None):
     for k, branch in enumerate(branches + extra):
         traced.extend(branch)
         ids += [k] * len(branch.delta)
-    equilibrium = curve_from_columns(*(getattr(traced, c) for c in _COLUMNS),
+    equilibrium = curve_from_columns(*(getattr(traced, c) for c in COLUMNS),
                                      np.ones(len(ids), dtype=bool), ids)
     if progress is not None:
         progress(1.0)
-    return _path(approach), _path(retraction), jumps_in, jumps_out, equilibrium, traced
+    return path_from_rows(approach), path_from_rows(retraction), jumps_in, jumps_out, equilibrium, traced
 
 
 def _retract(surface, settings, branches, counter, progress):
@@ -160,8 +163,3 @@ def _retract(surface, settings, branches, counter, progress):
                                  a_c=radius, branch=len(jumps)))
                 j, c = known
                 break
-
-
-def _path(rows):
-    columns = {c: [r[c] for r in rows] for c in (*_COLUMNS, "branch")}
-    return curve_from_columns(**columns, stable=np.ones(len(rows), dtype=bool))

@@ -14,7 +14,7 @@ import numpy as np
 from scipy.linalg import LinAlgError, cho_factor, cho_solve, lu_factor, lu_solve
 
 #: A Newton step never lets a gap fall below this fraction of its current value.
-_GAP_KEEP = 0.2
+GAP_KEEP = 0.2
 #: Heading in (x̄o, δ̄o, P̄) of an approach from far away (gap and δ̄o decreasing).
 APPROACH = np.array([-1.0, -1.0, 0.0])
 
@@ -165,6 +165,14 @@ class Linearisation:
         return dw / norm, dd / norm, observed / norm
 
 
+def gap_keeping_step(h, dh):
+    """Largest fraction ≤ 1 of the gap change dh that keeps every gap h above GAP_KEEP · h."""
+    shrinking = dh < 0.0
+    if not shrinking.any():
+        return 1.0
+    return min(1.0, float(np.min((GAP_KEEP - 1.0) * h[shrinking] / dh[shrinking])))
+
+
 def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10, patience=None):
     """Newton with a gap-preserving, residual-decreasing line search on the bordered system.
 
@@ -183,12 +191,7 @@ def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10
         c = direction @ (_observables(surface, w, delta) - anchor) - ds
         linear = Linearisation(surface, w, delta, direction)
         dw, dd = linear.solve(-np.append(g, c))
-        h = surface.gap(w, delta)
-        dh = dd - surface.interp @ dw
-        shrinking = dh < 0.0
-        alpha = 1.0
-        if shrinking.any():
-            alpha = min(1.0, float(np.min((_GAP_KEEP - 1.0) * h[shrinking] / dh[shrinking])))
+        alpha = gap_keeping_step(surface.gap(w, delta), dd - surface.interp @ dw)
         if scale is None:
             scale = 1.0 + np.max(np.abs(surface.stiffness @ w))
         merit = np.linalg.norm(g) / scale + abs(c)

@@ -11,7 +11,7 @@ So the unstable branch between the folds need not be traced.
 import numpy as np
 from scipy.linalg import LinAlgError, cho_factor, cho_solve
 
-from .continuation import _GAP_KEEP
+from .continuation import gap_keeping_step
 
 
 def _shifted_factor(jac, weight, shift, floor):
@@ -48,13 +48,17 @@ def _negative_curvature(surface, slope, solve, step, g, iterations=4):
     return 0.5 * v / np.max(np.abs(surface.interp @ v))
 
 
-def land(surface, w, delta, *, tol=1e-9, max_iterations=300):
+def land(surface, w, delta, *, tol=1e-9, max_iterations=None):
     """Stable equilibrium at fixed `delta` reached downhill in energy from the state `w`.
 
     tol: as `continuation.correct` (residual ≤ tol relative, last increment ≤ √tol relative).
+    max_iterations: default 300 + the number of surface nodes, as a snapping contact edge moves
+    by about one or two nodes per iteration (μ = 5, BEM `default`: 165 nodes in 100).
     Returns (w, iterations) with a positive definite tangent at w, or None if `max_iterations`
     do not get there.
     """
+    if max_iterations is None:
+        max_iterations = 300 + w.size
     w = w.copy()
     scale = 1.0 + np.max(np.abs(surface.stiffness @ w))
     # The shift is relative to the elastic diagonal: with axisymmetric weights the surface
@@ -77,11 +81,7 @@ def land(surface, w, delta, *, tol=1e-9, max_iterations=300):
         if shift == 0.0 and (np.max(np.abs(g)) <= tol * scale
                              and np.max(np.abs(step)) <= np.sqrt(tol) * (1.0 + np.max(np.abs(w)))):
             return w + step, iteration
-        h, dh = surface.gap(w, delta), -(surface.interp @ step)
-        shrinking = dh < 0.0
-        alpha = 1.0
-        if shrinking.any():
-            alpha = min(1.0, float(np.min((_GAP_KEEP - 1.0) * h[shrinking] / dh[shrinking])))
+        alpha = gap_keeping_step(surface.gap(w, delta), -(surface.interp @ step))
         energy, descent = surface.energy(w, delta), float(g @ step)
         for _ in range(30):
             w_try = w + alpha * step

@@ -12,7 +12,7 @@ from scipy.optimize import brentq
 from .continuation import ContinuationError, Linearisation, correct, trace
 from .curve import Jump, parabola_vertex, curve_from_columns
 
-_COLUMNS = ("delta", "x", "p", "area", "a_c")
+COLUMNS = ("delta", "x", "p", "area", "a_c")
 
 
 def root_along(surface, trace, k, component, *, xtol=1e-9):
@@ -77,10 +77,10 @@ def equilibrium_curve(trace):
     """The traced curve as a `Curve`; `branch` counts the changes of stability along it."""
     stable = np.asarray(trace.stable)
     branch = np.concatenate([[0], np.cumsum(stable[1:] != stable[:-1])])
-    return curve_from_columns(*(getattr(trace, c) for c in _COLUMNS), stable, branch)
+    return curve_from_columns(*(getattr(trace, c) for c in COLUMNS), stable, branch)
 
 
-def _fold(curve, i, j, descending):
+def fold_by_parabola(curve, i, j, descending):
     """Values at the extremum of δ̄o between the stable sample i and the unstable sample j (a
     minimum when δ̄o was `descending`), from parabolas in arc length through the three samples
     centred on the more extreme of the two."""
@@ -127,10 +127,10 @@ def walk(surface, trace, curve, order):
     pos = 0
     while pos < len(order):
         i = order[pos]
-        rows.append({c: getattr(curve, c)[i] for c in _COLUMNS} | {"branch": branch})
+        rows.append({c: getattr(curve, c)[i] for c in COLUMNS} | {"branch": branch})
         if pos + 1 < len(order) and not curve.stable[order[pos + 1]]:
             descending = pos > 0 and curve.delta[i] < curve.delta[order[pos - 1]]
-            delta, before = _fold(curve, i, order[pos + 1], descending)
+            delta, before = fold_by_parabola(curve, i, order[pos + 1], descending)
             before["area"] = 0.0 if before["a_c"] <= 0.0 else np.pi * before["a_c"] ** 2
             rows.append(dict(delta=delta, **before, branch=branch))
             pos, after = _landing(surface, trace, curve, order, pos + 1, delta)
@@ -139,9 +139,13 @@ def walk(surface, trace, curve, order):
             jumps.append(Jump(delta=delta, x_before=before["x"], p_before=before["p"],
                               p_after=after["p"], a_c_after=after["a_c"], x_after=after["x"]))
         pos += 1
-    columns = {c: [r[c] for r in rows] for c in (*_COLUMNS, "branch")}
-    path = curve_from_columns(**columns, stable=np.ones(len(rows), dtype=bool))
-    return path, jumps
+    return path_from_rows(rows), jumps
+
+
+def path_from_rows(rows):
+    """A displacement-control path (`Curve`, all stable) from dicts with COLUMNS and 'branch'."""
+    columns = {c: [r[c] for r in rows] for c in (*COLUMNS, "branch")}
+    return curve_from_columns(**columns, stable=np.ones(len(rows), dtype=bool))
 
 
 def whole_curve_paths(surface, settings, progress=None):
