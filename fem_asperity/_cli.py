@@ -65,7 +65,7 @@ def print_table(rows, columns):
 
 class ProgressBar:
     """A one-line progress bar on stderr: `label [#####.....] 50%`, redrawn in place on a
-    terminal, printed every 10% otherwise (logs stay short)."""
+    terminal, printed every 10% otherwise (logs stay short); it only moves forward."""
 
     def __init__(self, label, width=30, stream=None):
         self.label, self.width = label, width
@@ -76,7 +76,7 @@ class ProgressBar:
     def __call__(self, fraction):
         percent = int(100 * min(max(fraction, 0.0), 1.0))
         step = 1 if self.tty else 10
-        if percent // step == self.shown // step:
+        if percent // step <= self.shown // step:  # never backwards (e.g. on an unstable branch)
             return
         self.shown = percent
         filled = self.width * percent // 100

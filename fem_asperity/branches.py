@@ -93,7 +93,8 @@ def stable_paths(surface, settings, progress=None):
     """
     traced = Trace()
     w, delta, traced.newton_iterations = start_state(surface, settings)
-    report = (lambda tr: progress(0.85 * approach_fraction(tr.x[-1], settings))) if progress else None
+    report = ((lambda tr: progress(0.85 * approach_fraction(tr.x[-1], tr.p[-1], settings)))
+              if progress else None)
 
     def reached_end(tr):
         return tr.p[-1] >= settings.p_end

@@ -306,13 +306,18 @@ def trace(surface, settings=TraceSettings(), progress=None):
     `follow`.
     """
     w, delta, its = start_state(surface, settings)
-    report = (lambda tr: progress(approach_fraction(tr.x[-1], settings))) if progress else None
+    report = ((lambda tr: progress(approach_fraction(tr.x[-1], tr.p[-1], settings)))
+              if progress else None)
     result = follow(surface, w, delta, APPROACH, settings,
                     until=lambda tr: tr.p[-1] >= settings.p_end, on_point=report)
     result.newton_iterations += its
     return result
 
 
-def approach_fraction(x, settings):
-    """Progress of an approach at the centre gap x̄o: log(x_start/x̄o) / log(x_start/0.8), ≤ 1."""
-    return min(1.0, np.log(settings.x_start / max(x, 1e-3)) / np.log(settings.x_start / 0.8))
+def approach_fraction(x, p, settings):
+    """Progress of an approach at the centre gap x̄o and force P̄: half for the gap closing from
+    x_start to 1 (log scale), half for P̄ rising from −1 to p_end once in contact (where x̄o hardly
+    moves; at μ = 10 that is most of the approach)."""
+    closing = min(1.0, np.log(settings.x_start / max(x, 1e-3)) / np.log(settings.x_start))
+    loading = min(1.0, max(0.0, (p + 1.0) / (settings.p_end + 1.0))) if closing >= 1.0 else 0.0
+    return 0.5 * (closing + loading)
