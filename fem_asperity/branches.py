@@ -88,7 +88,7 @@ def stable_paths(surface, settings, progress=None):
     control (as `paths.walk`), the stable branches traced as one `Curve` (approach branches
     first, `branch` numbering them) and as one Trace (states, counters: landings included).
 
-    `progress(fraction)`: the approach runs to 0.85 (log of the centre gap), the retraction on.
+    `progress(fraction)`: the approach runs to 0.85 (`approach_fraction`), the retraction on.
     Raises ContinuationError where a branch cannot be followed or a jump finds no landing.
     """
     traced = Trace()
@@ -121,7 +121,8 @@ def stable_paths(surface, settings, progress=None):
                                      np.ones(len(ids), dtype=bool), ids)
     if progress is not None:
         progress(1.0)
-    return path_from_rows(approach), path_from_rows(retraction), jumps_in, jumps_out, equilibrium, traced
+    return (path_from_rows(approach), path_from_rows(retraction), jumps_in, jumps_out,
+            equilibrium, traced)
 
 
 def _retract(surface, settings, branches, counter, progress):

@@ -108,7 +108,7 @@ class Linearisation:
     Where ∂g/∂w is positive definite (a stable state) it is solved by Cholesky and block
     elimination (about 3x cheaper than LU); otherwise, or if the border is degenerate, by LU of
     the whole matrix. `stable` records which, so stability comes for free with every point.
-    The factorisation is in single precision (1.7-2x faster than double at n = 800-2900) and each
+    The factorisation is in single precision (1.5-2x faster than double at n = 800-2900) and each
     solve is refined once against the double-precision bordered matrix, so a solution carries
     about (κ·6e-8)² relative error for the bordered system's condition number κ.
     """
