@@ -8,13 +8,18 @@ other part; including P̄ keeps the steps honest where x̄o and δ̄o hardly mov
 neck shrinks (large μ, before jump-out).
 """
 
+from copy import copy
 from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.linalg import LinAlgError, cho_factor, cho_solve, lu_factor, lu_solve
 
-#: A Newton step never lets a gap fall below this fraction of its current value.
-GAP_KEEP = 0.2
+from .elimination import relax_edge
+from .surface import gap_keeping_step
+
+#: A Newton iteration reuses the last one's factorisation once that one's increment was ≤ REUSE
+#: relative to the state (the matrix then differs little), with up to MOVED_REFINEMENTS solves.
+REUSE, MOVED_REFINEMENTS = 1e-3, 3
 #: Heading in (x̄o, δ̄o, P̄) of an approach from far away (gap and δ̄o decreasing).
 APPROACH = np.array([-1.0, -1.0, 0.0])
 
@@ -116,13 +121,8 @@ class Linearisation:
     def __init__(self, surface, w, delta, row):
         jac, g_delta, p_delta, slope = surface.tangent(w, delta)
         n = self.n = g_delta.size
-        gradients = np.zeros((3, n + 1))
-        gradients[0, 0], gradients[0, n] = -1.0, 1.0  # x = δ − w0
-        gradients[1, n] = 1.0
-        gradients[2, :n], gradients[2, n] = -g_delta / surface.load_factor, p_delta
-        self.gradients, border = gradients, row @ gradients
-        self._g_delta, self._border_row = g_delta, border
-        self._jac_product = lambda x: surface.tangent_product(slope, x)
+        border = self._set_products(surface, row, g_delta, p_delta, slope)
+        self.refinements, self.moved = 1, False
         try:
             self._cho = cho_factor(jac, check_finite=False)
             self.stable = True
@@ -147,12 +147,38 @@ class Linearisation:
         dd = (rhs[-1] - self._border @ a) / self._denominator
         return np.append(a - dd * self._b, dd)
 
+    def _set_products(self, surface, row, g_delta, p_delta, slope):
+        """Hold the exact (double-precision) bordered product at one state; returns its border."""
+        n = g_delta.size
+        gradients = np.zeros((3, n + 1))
+        gradients[0, 0], gradients[0, n] = -1.0, 1.0  # x = δ − w0
+        gradients[1, n] = 1.0
+        gradients[2, :n], gradients[2, n] = -g_delta / surface.load_factor, p_delta
+        self.gradients, border = gradients, row @ gradients
+        self._g_delta, self._border_row = g_delta, border
+        self._jac_product = lambda x: surface.tangent_product(slope, x)
+        return border
+
+    def moved_to(self, surface, w, delta, row):
+        """This factorisation as the approximate inverse of the bordered matrix at a nearby state
+        (w, δ): solves are refined against that state's exact matrix (up to MOVED_REFINEMENTS
+        times, until a correction is ≤ 1e-4 of the step). The stability flag is this one's."""
+        moved = copy(self)
+        moved._set_products(surface, row, *surface.tangent(w, delta, factorised=False))
+        moved.refinements, moved.moved = MOVED_REFINEMENTS, True
+        return moved
+
     def solve(self, rhs):
         """Solution (dw, dδ) of the bordered system for the right-hand side (n + 1,)."""
         step = self._solve_factored(rhs)
-        dw, dd = step[:-1], step[-1]
-        product = np.append(self._jac_product(dw) + dd * self._g_delta, self._border_row @ step)
-        step += self._solve_factored(rhs - product)
+        for _ in range(self.refinements):
+            dw, dd = step[:-1], step[-1]
+            product = np.append(self._jac_product(dw) + dd * self._g_delta,
+                                self._border_row @ step)
+            correction = self._solve_factored(rhs - product)
+            step += correction
+            if np.max(np.abs(correction)) <= 1e-4 * np.max(np.abs(step)):
+                break
         return step[:-1], step[-1]
 
     def tangent(self):
@@ -163,14 +189,6 @@ class Linearisation:
         observed = self.gradients @ np.append(dw, dd)
         norm = np.linalg.norm(observed)
         return dw / norm, dd / norm, observed / norm
-
-
-def gap_keeping_step(h, dh):
-    """Largest fraction ≤ 1 of the gap change dh that keeps every gap h above GAP_KEEP · h."""
-    shrinking = dh < 0.0
-    if not shrinking.any():
-        return 1.0
-    return min(1.0, float(np.min((GAP_KEEP - 1.0) * h[shrinking] / dh[shrinking])))
 
 
 def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10, patience=None):
@@ -185,11 +203,14 @@ def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10
     linearisation lies within the last increment (≤ √tol relative) of the solution.
     """
     w, delta = w.copy(), float(delta)
-    scale, slow = None, 0
+    scale, slow, linear, increment = None, 0, None, np.inf
     for iteration in range(1, max_newton + 1):
         g = surface.residual(w, delta)
         c = direction @ (_observables(surface, w, delta) - anchor) - ds
-        linear = Linearisation(surface, w, delta, direction)
+        if increment <= REUSE * (1.0 + np.max(np.abs(w))):
+            linear = linear.moved_to(surface, w, delta, direction)
+        else:
+            linear = Linearisation(surface, w, delta, direction)
         dw, dd = linear.solve(-np.append(g, c))
         alpha = gap_keeping_step(surface.gap(w, delta), dd - surface.interp @ dw)
         if scale is None:
@@ -266,6 +287,7 @@ def follow(surface, w, delta, heading, settings, *, until, stop_at_fold=False, o
         t = tangent[2]
         anchor = np.array([result.x[-1], delta, result.p[-1]])
         w_guess, d_guess = _predict(result, tangent, ds)
+        w_guess = relax_edge(surface, w_guess, d_guess)
         step = correct(surface, w_guess, d_guess, row, anchor, ds * (row @ t),
                        tol=s.tol, max_newton=s.max_newton, patience=s.patience)
         if step is not None:
@@ -275,6 +297,10 @@ def follow(surface, w, delta, heading, settings, *, until, stop_at_fold=False, o
             w_new, d_new, its, linear = step
             result.newton_iterations += its
             tangent_new = linear.tangent()
+            if linear.moved and tangent_new[2][1] * t[1] <= 0.0:
+                # δ̄o turned: a fold, where stability changes; the flag must be this point's.
+                linear = Linearisation(surface, w_new, d_new, row)
+                tangent_new = linear.tangent()
             turn = np.arccos(np.clip(tangent_new[2] @ t, -1.0, 1.0))
             force, contact = surface.force(w_new, d_new), surface.contact(w_new, d_new)
             dp, da = abs(force - result.p[-1]), abs(contact[1] - result.a_c[-1])

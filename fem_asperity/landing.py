@@ -11,7 +11,7 @@ So the unstable branch between the folds need not be traced.
 import numpy as np
 from scipy.linalg import LinAlgError, cho_factor, cho_solve
 
-from .continuation import gap_keeping_step
+from .surface import gap_keeping_step
 
 
 def _shifted_factor(jac, weight, shift, floor):

@@ -13,6 +13,17 @@ from .lj import scaled_potential as potential
 from .lj import scaled_traction as traction
 from .lj import scaled_traction_slope as traction_slope
 
+#: A Newton step never lets a gap fall below this fraction of its current value.
+GAP_KEEP = 0.2
+
+
+def gap_keeping_step(h, dh):
+    """Largest fraction ≤ 1 of the gap change dh that keeps every gap h above GAP_KEEP · h."""
+    shrinking = dh < 0.0
+    if not shrinking.any():
+        return 1.0
+    return min(1.0, float(np.min((GAP_KEEP - 1.0) * h[shrinking] / dh[shrinking])))
+
 
 def derjaguin_profile(r, radius_ratio=None):
     """Sphere height above its apex at radius r (in ε; r in √(Rε)).
@@ -59,12 +70,14 @@ class LJSurface:
         return 0.5 * w @ (self.stiffness @ w) + self.load_factor * (
             self.weights @ potential(self.gap(w, delta)))
 
-    def tangent(self, w, delta):
+    def tangent(self, w, delta, *, factorised=True):
         """(∂g/∂w, ∂g/∂δ, ∂P̄/∂δ, slope): the symmetric surface tangent in single precision (it is
         only factorised, see `continuation.Linearisation`), the load and force sensitivities to δ
         (∂P̄/∂w = −(∂g/∂δ)/μ^(3/2)), and the weighted spring slope W dp̄/dh for
-        `tangent_product`."""
+        `tangent_product`. With factorised=False, without the first (the matrix)."""
         slope = self.weights * traction_slope(self.gap(w, delta))
+        if not factorised:
+            return self.load_factor * (self.interp_t @ slope), float(slope.sum()), slope
         spring = (self.interp_t @ self.interp.multiply(slope[:, None])).tocoo()
         jac = self._stiffness32.copy()
         np.subtract.at(jac, (spring.row, spring.col), self.load_factor * spring.data)
