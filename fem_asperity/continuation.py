@@ -107,6 +107,13 @@ def _observables(surface, w, delta):
     return np.array([surface.centre_gap(w, delta), delta, surface.force(w, delta)])
 
 
+def cholesky_in_place(matrix):
+    """Cholesky factor (for `cho_solve`) of the symmetric `matrix`, overwriting it; raises
+    LinAlgError if it is not positive definite. Its transpose is Fortran-ordered, so LAPACK
+    needs no copy (n = 1196, float32: 10 ms against 13 ms)."""
+    return cho_factor(matrix.T, check_finite=False, overwrite_a=True)
+
+
 class Linearisation:
     """The bordered Newton matrix [[∂g/∂w, ∂g/∂δ], [row · ∂o/∂(w, δ)]] at (w, δ), factorised.
 
@@ -124,7 +131,7 @@ class Linearisation:
         border = self._set_products(surface, row, g_delta, p_delta, slope)
         self.refinements, self.moved = 1, False
         try:
-            self._cho = cho_factor(jac, check_finite=False)
+            self._cho = cholesky_in_place(jac)
             self.stable = True
         except LinAlgError:
             self._cho, self.stable = None, False
@@ -133,9 +140,9 @@ class Linearisation:
             self._denominator = border[n] - self._border @ self._b
             if abs(self._denominator) > 1e-12 * (abs(border[n]) + abs(self._border) @ abs(self._b)):
                 return
-        matrix = np.empty((n + 1, n + 1), dtype=np.float32)
-        matrix[:n, :n], matrix[:n, n], matrix[n] = jac, g_delta, border
-        self._cho, self._lu = None, lu_factor(matrix, check_finite=False)
+        matrix = np.empty((n + 1, n + 1), dtype=np.float32, order="F")  # LU in place
+        matrix[:n, :n], matrix[:n, n], matrix[n] = surface.tangent(w, delta)[0], g_delta, border
+        self._cho, self._lu = None, lu_factor(matrix, check_finite=False, overwrite_a=True)
 
     def _cho_solve(self, rhs):
         return cho_solve(self._cho, rhs.astype(np.float32), check_finite=False).astype(float)

@@ -17,6 +17,8 @@ from .lj import scaled_traction_slope as traction_slope
 #: Nodes whose residual exceeds this fraction of the largest one are relaxed (with two
 #: neighbours each side).
 FRACTION = 0.05
+#: A residual spread over more nodes than this is not an edge's: left to the global Newton.
+MAX_NODES = 64
 
 
 def relax_edge(surface, w, delta, *, iterations=8, tol=1e-6):
@@ -28,6 +30,8 @@ def relax_edge(surface, w, delta, *, iterations=8, tol=1e-6):
     """
     g = surface.residual(w, delta)
     big = np.nonzero(np.abs(g) > FRACTION * np.max(np.abs(g)))[0]
+    if big.size > MAX_NODES:
+        return w
     nodes = np.unique(np.clip(big[:, None] + np.arange(-2, 3), 0, w.size - 1))
     local = surface.interp[:, nodes].tocsc()
     points = np.unique(local.nonzero()[0])

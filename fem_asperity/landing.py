@@ -9,24 +9,27 @@ So the unstable branch between the folds need not be traced.
 """
 
 import numpy as np
-from scipy.linalg import LinAlgError, cho_factor, cho_solve
+from scipy.linalg import LinAlgError, cho_solve
 
+from .continuation import cholesky_in_place
 from .surface import gap_keeping_step
 
 
-def _shifted_factor(jac, weight, shift, floor):
-    """(Cholesky factor of jac + s·diag(weight), s) for s = 0 if that factorisation succeeds,
-    else s raised 4x from max(shift, floor) until it does."""
+def _shifted_factor(jac, weight, shift, floor, unshifted_first):
+    """(Cholesky factor of jac + s·diag(weight), s) for s = 0 if `unshifted_first` and that
+    factorisation succeeds, else s raised 4x from max(shift, floor) until it does."""
     diagonal = np.arange(jac.shape[0])
-    try:
-        return cho_factor(jac, check_finite=False), 0.0
-    except LinAlgError:
-        shift = max(shift, floor)
+    if unshifted_first:
+        try:
+            return cholesky_in_place(jac.copy()), 0.0
+        except LinAlgError:
+            pass
+    shift = max(shift, floor)
     while True:
         matrix = jac.copy()
         matrix[diagonal, diagonal] += shift * weight
         try:
-            return cho_factor(matrix, check_finite=False, overwrite_a=True), shift
+            return cholesky_in_place(matrix), shift
         except LinAlgError:
             shift = max(4.0 * shift, floor)
 
@@ -66,10 +69,13 @@ def land(surface, w, delta, *, tol=1e-9, max_iterations=None):
     # the descent near a fold for 300 iterations (FE, domain size 1e7).
     weight = np.diag(surface.stiffness).astype(np.float32)
     start, floor = 0.0, 1e-6  # start: where the raise of the next shift begins
+    # The unshifted factorisation is tried only after an unshifted or a full step: after a
+    # shortened shifted step it failed 35 times in 40 (μ = 5, BEM `default`).
+    unshifted_first = True
     for iteration in range(1, max_iterations + 1):
         g = surface.residual(w, delta)
         jac, _, _, slope = surface.tangent(w, delta)
-        factor, shift = _shifted_factor(jac, weight, start, floor)
+        factor, shift = _shifted_factor(jac, weight, start, floor, unshifted_first)
 
         def solve(rhs):
             return cho_solve(factor, rhs.astype(np.float32), check_finite=False).astype(float)
@@ -92,6 +98,7 @@ def land(surface, w, delta, *, tol=1e-9, max_iterations=None):
                 break  # at a minimum E is flat to rounding: Newton's residual decides
             alpha *= 0.5
         w = w_try
+        unshifted_first = shift == 0.0 or alpha == 1.0
         if shift > 0.0:
             start = shift * (2.0 if alpha < 1.0 else 0.25)
     return None

@@ -8,6 +8,7 @@ h = δ + r²/2 − N w the Derjaguin gap (or the exact sphere profile, see `gap_
 
 import numpy as np
 from scipy.linalg import cho_factor, cho_solve
+from scipy.sparse import csr_matrix
 
 from .lj import scaled_potential as potential
 from .lj import scaled_traction as traction
@@ -23,6 +24,27 @@ def gap_keeping_step(h, dh):
     if not shrinking.any():
         return 1.0
     return min(1.0, float(np.min((GAP_KEEP - 1.0) * h[shrinking] / dh[shrinking])))
+
+
+def _spring_pattern(interp):
+    """(flat indices, map): the spring matrix Nᵀ diag(s) N of the interpolation N (n_quad ×
+    n_nodes) has the entries `map @ s` at the flat positions `indices` of an n_nodes² array."""
+    n_quad, n_nodes = interp.shape
+    lengths = np.diff(interp.indptr)
+    rows = np.repeat(np.arange(n_quad), lengths)
+    position = np.arange(interp.nnz) - np.repeat(interp.indptr[:-1], lengths)
+    cols = np.zeros((n_quad, lengths.max()), dtype=np.int64)
+    values = np.zeros(cols.shape)
+    cols[rows, position], values[rows, position] = interp.indices, interp.data
+    keys, products, points = [], [], []
+    for a in range(cols.shape[1]):
+        for b in range(cols.shape[1]):
+            keys.append(cols[:, a] * n_nodes + cols[:, b])
+            products.append(values[:, a] * values[:, b])
+            points.append(np.arange(n_quad))
+    keys, products, points = map(np.concatenate, (keys, products, points))
+    entries, slot = np.unique(keys, return_inverse=True)
+    return entries, csr_matrix((products, (slot, points)), shape=(entries.size, n_quad))
 
 
 def derjaguin_profile(r, radius_ratio=None):
@@ -55,6 +77,7 @@ class LJSurface:
         self.stiffness = cho_solve(factor, np.eye(half_space.compliance.shape[0]))
         self.stiffness = 0.5 * (self.stiffness + self.stiffness.T)
         self._stiffness32 = self.stiffness.astype(np.float32)
+        self._spring_entries, self._spring_map = _spring_pattern(self.interp)
 
     def gap(self, w, delta):
         """Gap at the quadrature points, in ε."""
@@ -78,9 +101,8 @@ class LJSurface:
         slope = self.weights * traction_slope(self.gap(w, delta))
         if not factorised:
             return self.load_factor * (self.interp_t @ slope), float(slope.sum()), slope
-        spring = (self.interp_t @ self.interp.multiply(slope[:, None])).tocoo()
         jac = self._stiffness32.copy()
-        np.subtract.at(jac, (spring.row, spring.col), self.load_factor * spring.data)
+        jac.reshape(-1)[self._spring_entries] -= self.load_factor * (self._spring_map @ slope)
         return jac, self.load_factor * (self.interp_t @ slope), float(slope.sum()), slope
 
     def tangent_product(self, slope, x):
