@@ -304,9 +304,12 @@ def follow(surface, w, delta, heading, settings, *, until, stop_at_fold=False, o
         t = tangent[2]
         anchor = np.array([result.x[-1], delta, result.p[-1]])
         w_guess, d_guess = _predict(result, tangent, ds)
-        w_guess = relax_edge(surface, w_guess, d_guess)
-        step = correct(surface, w_guess, d_guess, row, anchor, ds * (row @ t),
-                       tol=s.tol, max_newton=s.max_newton, patience=s.patience)
+        step = None  # a prediction through the sphere (a gap ≤ 0) is retried shorter
+        if np.min(surface.gap(w_guess, d_guess)) > 0.0:
+            w_guess = relax_edge(surface, w_guess, d_guess,
+                                 limit=np.max(np.abs(w_guess - result.states[-1])))
+            step = correct(surface, w_guess, d_guess, row, anchor, ds * (row @ t),
+                           tol=s.tol, max_newton=s.max_newton, patience=s.patience)
         if step is not None:
             # The tangent (and stability) from the last Newton matrix, whose point is within
             # √tol of the new one: one factorisation per point fewer (μ = 5, BEM `default`:

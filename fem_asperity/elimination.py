@@ -9,6 +9,7 @@ iterations (μ = 5, BEM `default`: 1673 → 940 Newton iterations, events unchan
 """
 
 import numpy as np
+from scipy.linalg import LinAlgError, cho_factor, cho_solve
 
 from .surface import gap_keeping_step
 from .lj import scaled_traction as traction
@@ -21,12 +22,14 @@ FRACTION = 0.05
 MAX_NODES = 64
 
 
-def relax_edge(surface, w, delta, *, iterations=8, tol=1e-6):
+def relax_edge(surface, w, delta, *, limit, iterations=8, tol=1e-6):
     """w with the out-of-balance nodes brought to local equilibrium at fixed δ (the others held).
 
     Local Newton with the exact tangent of those nodes and a gap-keeping step, stopped once a
-    step moves no node by more than `tol` ε. Returns `w` itself if the local tangent is singular
-    or the local residual did not fall.
+    step moves no node by more than `tol` ε. Returns `w` itself, unrelaxed, if the local tangent
+    is not positive definite (the edge would snap: a fold, left to the continuation), if a node
+    would move by more than `limit` ε (the predictor's own largest move: further would risk
+    stepping onto another branch) or if the local residual did not fall.
     """
     g = surface.residual(w, delta)
     big = np.nonzero(np.abs(g) > FRACTION * np.max(np.abs(g)))[0]
@@ -54,14 +57,15 @@ def relax_edge(surface, w, delta, *, iterations=8, tol=1e-6):
         slope = weights * traction_slope(gap)
         jac = stiffness - surface.load_factor * (local_t @ local.multiply(slope[:, None])).toarray()
         try:
-            step = np.linalg.solve(jac, -local_residual(gap))
-        except np.linalg.LinAlgError:
+            step = cho_solve(cho_factor(jac), -local_residual(gap))
+        except LinAlgError:
             return w
         alpha = gap_keeping_step(gap, -(local @ step))
         change += alpha * step
         if alpha * np.max(np.abs(step)) < tol:
             break
-    if not np.linalg.norm(local_residual(gap0 - local @ change)) < start:
+    if (np.max(np.abs(change)) > limit
+            or not np.linalg.norm(local_residual(gap0 - local @ change)) < start):
         return w
     relaxed = w.copy()
     relaxed[nodes] += change

@@ -47,15 +47,25 @@ def test_edge_relaxation_restores_a_disturbed_edge(traced):
     disturbed = w.copy()
     disturbed[edge - 3:edge + 4] += 0.1
     before = np.linalg.norm(surface.residual(disturbed, delta))
-    relaxed = relax_edge(surface, disturbed, delta)
+    relaxed = relax_edge(surface, disturbed, delta, limit=0.2)
     assert np.linalg.norm(surface.residual(relaxed, delta)) < 1e-2 * before
+
+
+def test_edge_relaxation_stays_within_its_limit(traced):
+    """Asked to move no node by more than 0.01 ε, it leaves a 0.1 ε disturbance unrelaxed."""
+    surface = traced[0]
+    w, delta = _contact_state(traced)
+    edge = np.nonzero(delta + surface.node_profile - w < 1.0)[0][-1]
+    disturbed = w.copy()
+    disturbed[edge - 3:edge + 4] += 0.1
+    assert relax_edge(surface, disturbed, delta, limit=0.01) is disturbed
 
 
 def test_edge_relaxation_leaves_a_spread_residual_alone(traced):
     """Far from contact the residual of w = 0 is spread over the whole surface: not an edge."""
     surface = traced[0]
     w = np.zeros(surface.r_nodes.size)
-    assert relax_edge(surface, w, 3.0) is w
+    assert relax_edge(surface, w, 3.0, limit=1.0) is w
 
 
 def test_moved_linearisation_solves_like_a_fresh_one(traced):
