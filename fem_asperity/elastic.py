@@ -66,6 +66,17 @@ class Solid:
         return young * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), young / (2.0 * (1.0 + nu))
 
 
+def boussinesq_point_load(r, depth, *, nu):
+    """(u_r, u_z) of a half-space (E* = 1) under a normal point force at the origin of unit load
+    sum ∫p r dr = 1 (force 2π): u_r outward, u_z downward (into the solid), at radius r and
+    depth z ≥ 0 (Johnson, Contact Mechanics, eq. 3.18). On the surface u_z = 2/r."""
+    rho = np.hypot(r, depth)
+    scale = 1.0 / (1.0 - nu)  # 2π / (4πG) with G = (1 − ν)/2 for E* = 1
+    u_r = scale * (r * depth / rho**3 - (1.0 - 2.0 * nu) * r / (rho * (rho + depth)))
+    u_z = scale * (2.0 * (1.0 - nu) / rho + depth**2 / rho**3)
+    return u_r, u_z
+
+
 def _strain(u, r):
     """Axisymmetric strains (ε_rr, ε_zz, ε_θθ, γ_rz) of a vector field (u_r, u_z)."""
     grad = u.grad
@@ -137,6 +148,37 @@ class HalfSpace:
         factor = cho_factor(0.5 * (schur + schur.T))
         self.compliance = cho_solve(factor, np.eye(schur.shape[0]))
         self.compliance = 0.5 * (self.compliance + self.compliance.T)
+        self._far_field = self._outside_response()
+        # The truncated solid is too stiff by the compliance of what lies outside it: near the
+        # axis (r ≪ size) that is a uniform sink of the whole surface, per unit load sum.
+        self.compliance -= self._far_field[self.surface_dofs[0]]
+
+    def _outside_response(self):
+        """Displacement field (all DOFs) per unit load sum ∫p r dr at the axis, of the solid held
+        on the far boundary at the half-space's own (Boussinesq) displacement instead of zero.
+
+        Adding load-sum times this field to the truncated solution restores the missing far
+        field up to O((r/size)²) near the axis: without it the separations of a solid truncated
+        at `size` are off by ~0.5 × 2π ∫p r dr / size (uniform disc, size 1e2 to 1e3)."""
+        far = self.basis.get_dofs("far")
+        radial, vertical = far.all("u^1"), far.all("u^2")
+        u_r, u_down = boussinesq_point_load(*self._depth_coordinates(radial), nu=self.solid.nu)
+        _, u_down_v = boussinesq_point_load(*self._depth_coordinates(vertical), nu=self.solid.nu)
+        held = np.zeros(self.basis.N)
+        held[radial], held[vertical] = u_r, -u_down_v
+        u = self._solve_free(-(self.stiffness @ held)[self.free])
+        return u + held
+
+    def _depth_coordinates(self, dofs):
+        return self.basis.doflocs[0, dofs], -self.basis.doflocs[1, dofs]
+
+    def _solve_free(self, rhs):
+        """All DOFs (zero on the held ones) of K_ff u_f = rhs."""
+        u_free = np.empty(self.free.size)
+        u_free[self._order] = self._lu.solve(rhs[self._order])
+        u = np.zeros(self.basis.N)
+        u[self.free] = u_free
+        return u
 
     def _surface_operator(self, quad_order):
         fb = FacetBasis(self.mesh, self.basis.elem, facets="top", intorder=quad_order)
@@ -165,14 +207,11 @@ class HalfSpace:
         return -self.compliance @ self.nodal_load(pressure_at_quad)
 
     def displacement_field(self, nodal_load):
-        """Full displacement vector (all DOFs) for normal surface loads (E* = 1 units)."""
+        """Full displacement vector (all DOFs) for normal surface loads (E* = 1 units), the
+        far field outside the truncated solid included (`_outside_response`)."""
         rhs = np.zeros(self.free.size)
         rhs[self._surface_position] = -nodal_load
-        u_free = np.empty(self.free.size)
-        u_free[self._order] = self._lu.solve(rhs[self._order])
-        u = np.zeros(self.basis.N)
-        u[self.free] = u_free
-        return u
+        return self._solve_free(rhs) + np.sum(nodal_load) * self._far_field
 
     def stress_zz(self, u):
         """σ_zz per element (mean over its quadrature points), E* = 1 units."""

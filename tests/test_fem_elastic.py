@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from fem_asperity import InputError
-from fem_asperity.elastic import HalfSpace, Solid
+from fem_asperity.elastic import HalfSpace, Solid, boussinesq_point_load
 from fem_asperity.mesh import graded_mesh
 
 
@@ -40,6 +40,40 @@ def test_uniform_disc_centre_deflection(p2):
     w = p2.deflection((p2.r_quad < 1.0).astype(float))
     assert p2.r_nodes[0] == 0.0
     assert -w[0] == pytest.approx(2.0, rel=0.01)  # 2 p a / E*
+
+
+def test_truncation_size_no_longer_matters():
+    """The solid outside the truncation is restored: the centre deflection of a uniform disc
+    (2 p a / E* = 2) is the same for L = 100 and L = 1e4 (before, 0.0148 and 0.0002 too small,
+    falling like 1/L), and within 5e-5 of 2 (what remains is the bulk grading)."""
+    deflections = []
+    for size in (1e2, 1e4):
+        mesh = graded_mesh(h_surface=0.07, r_fine=2.0, size=size, grading=0.3)
+        model = HalfSpace(mesh, order=2)
+        deflections.append(-model.deflection((model.r_quad < 1.0).astype(float))[0])
+    assert deflections[0] == pytest.approx(deflections[1], abs=2e-6)
+    assert deflections[1] == pytest.approx(2.0, abs=1e-4)
+
+
+def test_boussinesq_point_load_on_the_surface_and_the_axis():
+    """u_z = 2/r on the surface (P/(π E* r) with P = 2π), u_r = −(1 − 2ν)/((1 − ν) r) there,
+    and on the axis u_z = (3 − 2ν)/((1 − ν) z), u_r = 0 (Johnson, eq. 3.18 at its two edges)."""
+    nu = 0.3
+    u_r, u_z = boussinesq_point_load(np.array([0.5, 2.0]), np.zeros(2), nu=nu)
+    np.testing.assert_allclose(u_z, 2.0 / np.array([0.5, 2.0]), rtol=1e-14)
+    np.testing.assert_allclose(u_r, -(1 - 2 * nu) / ((1 - nu) * np.array([0.5, 2.0])), rtol=1e-14)
+    u_r, u_z = boussinesq_point_load(0.0, 3.0, nu=nu)
+    assert u_r == 0.0 and u_z == pytest.approx((3 - 2 * nu) / ((1 - nu) * 3.0), rel=1e-14)
+
+
+def test_displacement_field_carries_the_far_field(p2):
+    """The full field's surface values are the condensed deflection (both include the solid
+    outside the truncation), near the axis to 1e-9."""
+    load = p2.nodal_load((p2.r_quad < 1.0).astype(float))
+    u = p2.displacement_field(load)
+    near = p2.r_nodes < 2.0
+    np.testing.assert_allclose(u[p2.surface_dofs][near], (-p2.compliance @ load)[near],
+                               rtol=0, atol=1e-9)
 
 
 def test_force_weights_integrate_r():
