@@ -15,7 +15,7 @@ from .continuation import (APPROACH, ContinuationError, Trace, approach_fraction
                            start_state)
 from .curve import Jump, curve_from_columns
 from .landing import land
-from .paths import (COLUMNS, equilibrium_curve, fold_by_parabola, path_from_rows,
+from .paths import (COLUMNS, equilibrium_curve, fold_by_parabola, path_from_rows, point_row,
                     refine_force_extrema, root_along)
 
 #: Headings in (x̄o, δ̄o, P̄) from a landing: a stable branch always moves in δ̄o.
@@ -69,10 +69,6 @@ def _jump(surface, fold, beyond, settings, counter):
                    a_c_after=surface.contact(w, delta)[1], x_after=x)
 
 
-def _rows(trace, branch, points):
-    return [{c: getattr(trace, c)[i] for c in COLUMNS} | {"branch": branch} for i in points]
-
-
 def _approach_branch(branches, delta, x, jump):
     """(j, c): the approach branch j whose δ̄o range holds `delta` with x̄o there within 1% of the
     jump size of `x`, and its count c of points with larger δ̄o; None if there is none."""
@@ -103,7 +99,7 @@ def stable_paths(surface, settings, progress=None):
     while True:
         branch, fold, beyond = _branch(surface, w, delta, heading, settings, reached_end, report)
         branches.append(branch)
-        approach += _rows(branch, len(jumps_in), range(len(branch.delta)))
+        approach += [point_row(branch, i, len(jumps_in)) for i in range(len(branch.delta))]
         if fold is None:
             break
         if len(jumps_in) >= MAX_JUMPS:
@@ -141,14 +137,14 @@ def _retract(surface, settings, branches, counter, progress):
         return tr.x[-1] >= settings.x_start
 
     while True:
-        rows += _rows(branches[j], len(jumps), range(c - 1, -1, -1))
+        rows += [point_row(branches[j], i, len(jumps)) for i in range(c - 1, -1, -1)]
         if j == 0:
             return rows, jumps, extra
         w, delta, skip = branches[j].states[0], branches[j].delta[0], 1
         while True:
             branch, fold, beyond = _branch(surface, w, delta, _UP, settings, far, report)
             extra.append(branch)
-            rows += _rows(branch, len(jumps), range(skip, len(branch.delta)))
+            rows += [point_row(branch, i, len(jumps)) for i in range(skip, len(branch.delta))]
             if fold is None:
                 return rows, jumps, extra
             if len(jumps) >= MAX_JUMPS:

@@ -127,7 +127,7 @@ def walk(surface, trace, curve, order):
     pos = 0
     while pos < len(order):
         i = order[pos]
-        rows.append({c: getattr(curve, c)[i] for c in COLUMNS} | {"branch": branch})
+        rows.append(point_row(curve, i, branch))
         if pos + 1 < len(order) and not curve.stable[order[pos + 1]]:
             descending = pos > 0 and curve.delta[i] < curve.delta[order[pos - 1]]
             delta, before = fold_by_parabola(curve, i, order[pos + 1], descending)
@@ -140,6 +140,11 @@ def walk(surface, trace, curve, order):
                               p_after=after["p"], a_c_after=after["a_c"], x_after=after["x"]))
         pos += 1
     return path_from_rows(rows), jumps
+
+
+def point_row(source, i, branch):
+    """Row of a path: the COLUMNS of point i of `source` (a Trace or a Curve) and `branch`."""
+    return {c: getattr(source, c)[i] for c in COLUMNS} | {"branch": branch}
 
 
 def path_from_rows(rows):

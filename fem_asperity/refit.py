@@ -24,7 +24,7 @@ from scipy.optimize import minimize_scalar
 from ._io import write_atomic
 from .laws import AsperityLaws
 from .onset import jump_in_onset
-from .store import cache_dir, stored_curve
+from .store import cache_dir, solver_revision, stored_curve
 
 #: Tabor parameters of the refit: both regimes, up to where a BEM curve costs seconds.
 REFIT_MU = (0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0, 1.3, 1.6, 2.0, 2.5, 3.0)
@@ -90,7 +90,7 @@ def refit(mus=REFIT_MU, *, method="bem", accuracy="default", progress=None):
 
 def stored_refit(*, method="bem", accuracy="default", cache=None):
     """`Refit` read from the store, or computed (over `REFIT_MU`) and stored."""
-    path = Path(cache or cache_dir()) / f"refit-{method}-{accuracy}.json"
+    path = Path(cache or cache_dir()) / f"refit-{method}-{accuracy}-{solver_revision()}.json"
     if path.exists():
         data = json.loads(path.read_text())
         residuals = {k: tuple(v) for k, v in data["residuals"].items()}

@@ -1,0 +1,21 @@
+"""The store of solved curves: solved once per solver revision, then read back."""
+
+import fem_asperity.store as store
+
+
+def test_a_changed_solver_solves_afresh(tmp_path, monkeypatch):
+    solved = []
+    real_solve = store.solve_curve
+
+    def counting_solve(*args, **kwargs):
+        solved.append(args)
+        return real_solve(*args, **kwargs)
+
+    monkeypatch.setattr(store, "solve_curve", counting_solve)
+    first = store.stored_curve(0.2, accuracy="draft", cache=tmp_path)
+    again = store.stored_curve(0.2, accuracy="draft", cache=tmp_path)
+    assert len(solved) == 1 and again[1] == first[1]
+    monkeypatch.setattr(store, "solver_revision", lambda: "another")
+    changed = store.stored_curve(0.2, accuracy="draft", cache=tmp_path)
+    assert len(solved) == 2 and changed[2] != first[2]
+    assert changed[1]["p_off"] == first[1]["p_off"]
