@@ -8,7 +8,9 @@ force ∫ p̄ r dr is P/(2πRΔγ) directly.
 
 The LJ traction acts only on the surface and only normally, so the bulk is condensed once: the
 surface compliance C maps normal surface loads to the surface normal displacement w (upward,
-toward the sphere), and the nonlinear problem runs on the surface unknowns alone.
+toward the sphere), and the nonlinear problem runs on the surface unknowns alone. The solid is
+truncated at a finite size; what lies outside is restored by the far field of the load sum
+(`HalfSpace._outside_response`).
 """
 
 from dataclasses import dataclass
@@ -162,10 +164,10 @@ class HalfSpace:
         at `size` are off by ~0.5 × 2π ∫p r dr / size (uniform disc, size 1e2 to 1e3)."""
         far = self.basis.get_dofs("far")
         radial, vertical = far.all("u^1"), far.all("u^2")
-        u_r, u_down = boussinesq_point_load(*self._depth_coordinates(radial), nu=self.solid.nu)
-        _, u_down_v = boussinesq_point_load(*self._depth_coordinates(vertical), nu=self.solid.nu)
+        u_r, _ = boussinesq_point_load(*self._depth_coordinates(radial), nu=self.solid.nu)
+        _, u_down = boussinesq_point_load(*self._depth_coordinates(vertical), nu=self.solid.nu)
         held = np.zeros(self.basis.N)
-        held[radial], held[vertical] = u_r, -u_down_v
+        held[radial], held[vertical] = u_r, -u_down
         u = self._solve_free(-(self.stiffness @ held)[self.free])
         return u + held
 
