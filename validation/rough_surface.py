@@ -178,7 +178,7 @@ def verdicts(data, spread):
 
 #: Tabor parameters at which the paper's law is checked against the solved (BEM) law by default.
 #: μ = 10 works (`--compare-mu ... 10`) but its BEM `default` curve (3021 surface nodes, n ∝ μ²,
-#: a dense factorisation per Newton step) took 32 min to solve and store, so it is not a default.
+#: a dense factorisation per Newton step) takes 23 min to solve and store, so it is not a default.
 COMPARISON_MU = (0.1, 0.3, 0.5, 0.7, 1.0, 2.0, 3.0, 5.0)
 
 
