@@ -37,7 +37,8 @@ H_MAX_BEM = 0.025
 #: Truncation radius/depth of the half-space, in √(Rε). The solid outside is restored near the
 #: axis (`elastic.HalfSpace`) to O((a/L)²): at μ = 3 and 5 the events at L = 1e3 and 1e5 agree
 #: to 1e-7, with 25-40% fewer DOFs (μ = 5 `default`: 20.4 s against 24.5 s); at L = 1e2 they
-#: move by up to 1e-5. Uncorrected, the separations shifted by ~π μ^(3/2)|P̄|/L.
+#: move by up to 1e-5. Uncorrected, the separations shifted by ~π μ^(3/2)|P̄|/L. Beyond
+#: μ ≈ 10 the size grows as 100 r_fine, keeping (a/L)² ≤ 1e-4.
 DOMAIN_SIZE = 1e3
 #: Last node of the boundary-integral traction grid, in √(Rε): the LJ tail beyond it carries a
 #: force of about (16/3) r⁻⁴ ≈ 5e-8 (the solid itself is not truncated).
@@ -110,4 +111,5 @@ def discretisation(mu, accuracy="default", *, p_end=1.0, method="fem"):
         return Discretisation(name=accuracy, h_surface=h_bem, r_fine=r_fine,
                               size=TRACTION_RADIUS, grading=0.1, order=1, method="bem",
                               trace=trace)
-    return Discretisation(name=accuracy, h_surface=h_surface, r_fine=r_fine, trace=trace)
+    return Discretisation(name=accuracy, h_surface=h_surface, r_fine=r_fine,
+                          size=max(DOMAIN_SIZE, 100.0 * r_fine), trace=trace)

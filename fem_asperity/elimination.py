@@ -42,9 +42,8 @@ def relax_edge(surface, w, delta, *, limit, iterations=8, tol=1e-6):
     local_t = local.T.tocsr()
     weights = surface.weights[points]
     stiffness = surface.stiffness[np.ix_(nodes, nodes)]
-    elastic = g[nodes] - surface.load_factor * (local_t @ (weights * traction(
-        surface.gap(w, delta)[points])))
     gap0 = surface.gap(w, delta)[points]
+    elastic = g[nodes] - surface.load_factor * (local_t @ (weights * traction(gap0)))
     change = np.zeros(nodes.size)
 
     def local_residual(gap):
