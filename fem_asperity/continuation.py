@@ -131,9 +131,10 @@ class Linearisation:
     """
 
     def __init__(self, surface, w, delta, row):
-        jac, g_delta, p_delta, slope = surface.tangent(w, delta)
+        g_delta, p_delta, slope = surface.sensitivities(w, delta)
         n = self.n = g_delta.size
         border = self._set_products(surface, row, g_delta, p_delta, slope)
+        jac = surface.tangent_matrix(slope)
         self.refinements, self.moved, self.converged = 1, False, True
         try:
             self._cho = cholesky_in_place(jac)
@@ -146,7 +147,7 @@ class Linearisation:
             if abs(self._denominator) > 1e-12 * (abs(border[n]) + abs(self._border) @ abs(self._b)):
                 return
         matrix = np.empty((n + 1, n + 1), dtype=np.float32, order="F")  # LU in place
-        matrix[:n, :n], matrix[:n, n], matrix[n] = surface.tangent(w, delta)[0], g_delta, border
+        matrix[:n, :n], matrix[:n, n], matrix[n] = surface.tangent_matrix(slope), g_delta, border
         self._cho, self._lu = None, lu_factor(matrix, check_finite=False, overwrite_a=True)
 
     def _cho_solve(self, rhs):
@@ -177,7 +178,7 @@ class Linearisation:
         times, until a correction is ≤ ACCEPT of the step; `converged` says whether the last
         solve got there). The stability flag is this one's."""
         moved = copy(self)
-        moved._set_products(surface, row, *surface.tangent(w, delta, factorised=False))
+        moved._set_products(surface, row, *surface.sensitivities(w, delta))
         moved.refinements, moved.moved = MOVED_REFINEMENTS, True
         return moved
 

@@ -74,7 +74,8 @@ def land(surface, w, delta, *, tol=1e-9, max_iterations=None):
     unshifted_first = True
     for iteration in range(1, max_iterations + 1):
         g = surface.residual(w, delta)
-        jac, _, _, slope = surface.tangent(w, delta)
+        slope = surface.sensitivities(w, delta)[2]
+        jac = surface.tangent_matrix(slope)
         factor, shift = _shifted_factor(jac, weight, start, floor, unshifted_first)
 
         def solve(rhs):

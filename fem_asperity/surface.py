@@ -93,20 +93,22 @@ class LJSurface:
         return 0.5 * w @ (self.stiffness @ w) + self.load_factor * (
             self.weights @ potential(self.gap(w, delta)))
 
-    def tangent(self, w, delta, *, factorised=True):
-        """(∂g/∂w, ∂g/∂δ, ∂P̄/∂δ, slope): the symmetric surface tangent in single precision (it is
-        only factorised, see `continuation.Linearisation`), the load and force sensitivities to δ
-        (∂P̄/∂w = −(∂g/∂δ)/μ^(3/2)), and the weighted spring slope W dp̄/dh for
-        `tangent_product`. With factorised=False, without the first (the matrix)."""
+    def sensitivities(self, w, delta):
+        """(∂g/∂δ, ∂P̄/∂δ, slope): the load and force sensitivities to δ (∂P̄/∂w =
+        −(∂g/∂δ)/μ^(3/2)) and the weighted spring slope W dp̄/dh, which sets the tangent
+        (`tangent_matrix`, `tangent_product`)."""
         slope = self.weights * traction_slope(self.gap(w, delta))
-        if not factorised:
-            return self.load_factor * (self.interp_t @ slope), float(slope.sum()), slope
+        return self.load_factor * (self.interp_t @ slope), float(slope.sum()), slope
+
+    def tangent_matrix(self, slope):
+        """∂g/∂w for the spring `slope`, symmetric, in single precision (it is only factorised,
+        see `continuation.Linearisation`)."""
         jac = self._stiffness32.copy()
         jac.reshape(-1)[self._spring_entries] -= self.load_factor * (self._spring_map @ slope)
-        return jac, self.load_factor * (self.interp_t @ slope), float(slope.sum()), slope
+        return jac
 
     def tangent_product(self, slope, x):
-        """(∂g/∂w) x in double precision, for the tangent with spring `slope` (from `tangent`)."""
+        """(∂g/∂w) x in double precision for the spring `slope` (from `sensitivities`)."""
         return self.stiffness @ x - self.load_factor * (self.interp_t @ (slope * (self.interp @ x)))
 
     def force(self, w, delta):
