@@ -8,6 +8,8 @@ and a backtracking line search keeps every gap above a fraction of itself and ne
 So the unstable branch between the folds need not be traced.
 """
 
+from typing import NamedTuple
+
 import numpy as np
 from scipy.linalg import LinAlgError, cho_solve
 
@@ -51,14 +53,23 @@ def _negative_curvature(surface, slope, solve, step, g, iterations=4):
     return 0.5 * v / np.max(np.abs(surface.interp @ v))
 
 
+class Landing(NamedTuple):
+    """Result of `land`: the state w, the iterations spent, and whether it is a stable
+    equilibrium (else the last iterate)."""
+
+    w: np.ndarray
+    iterations: int
+    converged: bool
+
+
 def land(surface, w, delta, *, tol=1e-9, max_iterations=None):
     """Stable equilibrium at fixed `delta` reached downhill in energy from the state `w`.
 
     tol: as `continuation.correct` (residual ≤ tol relative, last increment ≤ √tol relative).
     max_iterations: default 300 + the number of surface nodes, as a snapping contact edge moves
     by about one or two nodes per iteration (μ = 5, BEM `default`: 165 nodes in 100).
-    Returns (w, iterations) with a positive definite tangent at w, or None if `max_iterations`
-    do not get there.
+    Returns a `Landing`: with `converged`, w has a positive definite tangent; without, w is the
+    last iterate (lower in energy than the start) after `max_iterations`.
     """
     if max_iterations is None:
         max_iterations = 300 + w.size
@@ -87,7 +98,7 @@ def land(surface, w, delta, *, tol=1e-9, max_iterations=None):
             step += _negative_curvature(surface, slope, solve, step, g)
         if shift == 0.0 and (np.max(np.abs(g)) <= tol * scale
                              and np.max(np.abs(step)) <= np.sqrt(tol) * (1.0 + np.max(np.abs(w)))):
-            return w + step, iteration
+            return Landing(w + step, iteration, True)
         alpha = gap_keeping_step(surface.gap(w, delta), -(surface.interp @ step))
         energy, descent = surface.energy(w, delta), float(g @ step)
         for _ in range(30):
@@ -102,4 +113,4 @@ def land(surface, w, delta, *, tol=1e-9, max_iterations=None):
         unshifted_first = shift == 0.0 or alpha == 1.0
         if shift > 0.0:
             start = shift * (2.0 if alpha < 1.0 else 0.25)
-    return None
+    return Landing(w, max_iterations, False)

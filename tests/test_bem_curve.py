@@ -120,5 +120,6 @@ def test_energy_descent_lands_where_newton_on_the_traced_branch_does():
     jumps = (result.events.jump_in, result.events.jump_out)
     for k, jump in zip(folds, jumps):
         beyond = k + 1 if stable[k] else k  # the unstable point next to the fold
-        w, _ = land(surface, traced.states[beyond], jump.delta)
+        w, _, converged = land(surface, traced.states[beyond], jump.delta)
+        assert converged
         assert surface.force(w, jump.delta) == pytest.approx(jump.p_after, rel=1e-8)
