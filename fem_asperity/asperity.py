@@ -17,7 +17,7 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from ._checks import InputError, in_range, positive
-from .accuracy import discretisation
+from .accuracy import H_INSIDE, discretisation
 from .bem import BoussinesqSurface, radial_grid
 from .continuation import ContinuationError
 from .curve import Curve, Events, read_events
@@ -26,6 +26,7 @@ from .mesh import graded_mesh
 from .branches import stable_paths
 from .paths import whole_curve_paths
 from .surface import LJSurface
+from .tracking import EdgeGrids
 
 #: BLAS threads while a curve is set up and traced. Its dense factorisations (n ≈ 100-3000) ran
 #: 2.7x slower with 2 OpenBLAS threads than with 1 on the 2-core development machine (μ = 5, BEM
@@ -119,12 +120,23 @@ def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, unstable_br
     beyond the discretisation's own): for studies that set the resolution themselves."""
     start = time.perf_counter()
     with threadpool_limits(PATH_BLAS_THREADS, user_api="blas"):
-        half_space = elastic_surface(disc, solid)
-        surface = LJSurface(half_space, mu, radius_ratio=radius_ratio)
-        solve = whole_curve_paths if unstable_branch else stable_paths
-        approach, retraction, jumps_in, jumps_out, curve, traced = solve(surface, disc.trace,
-                                                                         progress)
+        if disc.band is not None:
+            if unstable_branch or solid.layer_thickness is not None:
+                raise InputError("grids that follow the contact edge (BEM at large mu) trace "
+                                 "stable branches of a homogeneous half-space only")
+            grids = EdgeGrids(mu, h=disc.h_surface, band=disc.band, h_inside=H_INSIDE,
+                              contact_h=disc.h_contact, contact_r=disc.r_fine, r_max=disc.size,
+                              growth=disc.grading, radius_ratio=radius_ratio)
+            surface, half_space = grids.start, None
+            solved = stable_paths(surface, disc.trace, progress, grids=grids)
+        else:
+            half_space = elastic_surface(disc, solid)
+            surface = LJSurface(half_space, mu, radius_ratio=radius_ratio)
+            solve = whole_curve_paths if unstable_branch else stable_paths
+            solved = solve(surface, disc.trace, progress)
+        approach, retraction, jumps_in, jumps_out, curve, traced = solved
     folds = int(curve.branch.max()) if unstable_branch else len(jumps_in) + len(jumps_out)
+    nodes = surface.r_nodes.size if half_space else grids.largest_nodes
     result = CurveResult(
         mu=mu,
         accuracy=disc.name,
@@ -134,16 +146,20 @@ def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, unstable_br
         retraction=retraction,
         events=read_events(approach, retraction, jumps_in, jumps_out),
         error_estimate=None,
-        dofs=half_space.dofs,
-        surface_nodes=half_space.r_nodes.size,
+        dofs=half_space.dofs if half_space else nodes,
+        surface_nodes=nodes,
         points=len(curve),
         newton_iterations=traced.newton_iterations,
         wall_s=time.perf_counter() - start,
         folds=folds,
         method=disc.method,
-        model=Model(half_space, surface, traced),
+        model=Model(half_space, surface, traced) if half_space else None,
     )
     message = f"{folds} folds of the equilibrium curve"
+    if half_space is None:
+        message += (f"; {grids.regrids} grids followed the contact edge (at most {nodes} nodes), "
+                    f"moving a state to a new grid changed P̄ by at most "
+                    f"{grids.largest_change:.1e}")
     if result.ripples:
         message += (" (more than one jump-in and one jump-out: probably ripple from a surface "
                     "mesh too coarse for this mu; try a finer accuracy)")

@@ -14,7 +14,7 @@ import numpy as np
 from .continuation import (APPROACH, ContinuationError, Trace, approach_fraction, follow,
                            start_state)
 from .curve import Jump, curve_from_columns
-from .landing import land
+from .tracking import FixedGrid
 from .paths import (COLUMNS, equilibrium_curve, fold_by_parabola, path_from_rows, point_row,
                     refine_force_extrema, root_along)
 
@@ -24,7 +24,28 @@ _DOWN, _UP = np.array([0.0, -1.0, 0.0]), np.array([0.0, 1.0, 0.0])
 MAX_JUMPS = 200
 
 
-def _branch(surface, w, delta, heading, settings, until, on_point):
+def _branch(grids, surface, w, delta, heading, settings, until, on_point):
+    """(stable Trace from (w, δ) on `surface`, fold, state past the fold, surface at the end):
+    `_piece`s of the branch, moved to a new grid (`grids.land`, see `tracking`) each time the
+    contact edge leaves the current one's band; on a fixed grid, one piece."""
+    merged = Trace()
+    while True:
+        def done(tr):
+            return until(tr) or not grids.fits(surface, tr.states[-1], tr.delta[-1])
+
+        traced, fold, beyond = _piece(surface, w, delta, heading, settings, done, on_point)
+        if fold is not None or until(traced):
+            merged.extend(traced)
+            return merged, fold, beyond, surface
+        w, delta, p_before = traced.states[-1], traced.delta[-1], traced.p[-1]
+        traced.drop_last()  # solved again on the next grid
+        merged.extend(traced)
+        surface, w, its = grids.land(surface, w, delta, tol=settings.tol)
+        merged.newton_iterations += its
+        grids.largest_change = max(grids.largest_change, abs(surface.force(w, delta) - p_before))
+
+
+def _piece(surface, w, delta, heading, settings, until, on_point):
     """(stable Trace from (w, δ) with its force extrema refined, fold, state past the fold):
     fold = (δ̄o, values before) at the branch's end, or None if `until` was met.
 
@@ -54,18 +75,16 @@ def _branch(surface, w, delta, heading, settings, until, on_point):
     return traced, fold, beyond
 
 
-def _jump(surface, fold, beyond, settings, counter):
-    """Land past `fold` downhill from the unstable state `beyond`: (w, Jump)."""
+def _jump(grids, surface, fold, beyond, settings, counter):
+    """Land past `fold` downhill from the unstable state `beyond`, on the grid of the landing
+    (`grids.land`): (surface, w, Jump)."""
     delta, before = fold
-    landed = land(surface, beyond, delta, tol=settings.tol)
-    if landed is None:
-        raise ContinuationError(f"no stable state found downhill at the jump at δ = {delta:.6g}")
-    w, its = landed
+    surface, w, its = grids.land(surface, beyond, delta, tol=settings.tol)
     counter.newton_iterations += its
     x, p = surface.centre_gap(w, delta), surface.force(w, delta)
     if abs(x - before["x"]) <= 1e-9 * (1.0 + abs(x)):
         raise ContinuationError(f"the jump at δ = {delta:.6g} landed back on its own branch")
-    return w, Jump(delta=delta, x_before=before["x"], p_before=before["p"], p_after=p,
+    return surface, w, Jump(delta=delta, x_before=before["x"], p_before=before["p"], p_after=p,
                    a_c_after=surface.contact(w, delta)[1], x_after=x)
 
 
@@ -79,14 +98,19 @@ def _approach_branch(branches, delta, x, jump):
     return None
 
 
-def stable_paths(surface, settings, progress=None):
+def stable_paths(surface, settings, progress=None, *, grids=None):
     """(approach, retraction, jumps in, jumps out, equilibrium, traced): the two paths under δ̄o
     control (as `paths.walk`), the stable branches traced as one `Curve` (approach branches
     first, `branch` numbering them) and as one Trace (states, counters: landings included).
 
+    grids: a `tracking.EdgeGrids` whose grids follow the contact edge (`surface` is then its
+    pre-contact one, `grids.start`); None: `surface` throughout (the Trace's states are then all
+    on it).
+
     `progress(fraction)`: the approach runs to 0.85 (`approach_fraction`), the retraction on.
     Raises ContinuationError where a branch cannot be followed or a jump finds no landing.
     """
+    grids = grids or FixedGrid(surface)
     traced = Trace()
     w, delta, traced.newton_iterations = start_state(surface, settings)
     report = ((lambda tr: progress(0.85 * approach_fraction(tr.x[-1], tr.p[-1], settings)))
@@ -95,9 +119,11 @@ def stable_paths(surface, settings, progress=None):
     def reached_end(tr):
         return tr.p[-1] >= settings.p_end
 
-    branches, approach, jumps_in, heading = [], [], [], APPROACH
+    branches, starts, approach, jumps_in, heading = [], [], [], [], APPROACH
     while True:
-        branch, fold, beyond = _branch(surface, w, delta, heading, settings, reached_end, report)
+        starts.append(surface)
+        branch, fold, beyond, surface = _branch(grids, surface, w, delta, heading, settings,
+                                                reached_end, report)
         branches.append(branch)
         approach += [point_row(branch, i, len(jumps_in)) for i in range(len(branch.delta))]
         if fold is None:
@@ -105,10 +131,10 @@ def stable_paths(surface, settings, progress=None):
         if len(jumps_in) >= MAX_JUMPS:
             raise ContinuationError(f"more than {MAX_JUMPS} jumps on approach")
         approach.append(dict(delta=fold[0], **fold[1], branch=len(jumps_in)))
-        w, jump = _jump(surface, fold, beyond, settings, traced)
+        surface, w, jump = _jump(grids, surface, fold, beyond, settings, traced)
         jumps_in.append(jump)
         delta, heading = fold[0], _DOWN
-    retraction, jumps_out, extra = _retract(surface, settings, branches, traced, progress)
+    retraction, jumps_out, extra = _retract(grids, starts, settings, branches, traced, progress)
     ids = []
     for k, branch in enumerate(branches + extra):
         traced.extend(branch)
@@ -121,9 +147,10 @@ def stable_paths(surface, settings, progress=None):
             equilibrium, traced)
 
 
-def _retract(surface, settings, branches, counter, progress):
+def _retract(grids, starts, settings, branches, counter, progress):
     """(rows, jumps, branches traced): back along approach branch j from its point c − 1, then on
-    from its first point (a landing) by tracing, until a branch reaches x_start again."""
+    from its first point (a landing, on the surface starts[j]) by tracing, until a branch reaches
+    x_start again."""
     rows, jumps, extra = [], [], []
     j, c = len(branches) - 1, len(branches[-1].delta)
     n_approach = sum(len(b.delta) for b in branches)
@@ -140,9 +167,10 @@ def _retract(surface, settings, branches, counter, progress):
         rows += [point_row(branches[j], i, len(jumps)) for i in range(c - 1, -1, -1)]
         if j == 0:
             return rows, jumps, extra
-        w, delta, skip = branches[j].states[0], branches[j].delta[0], 1
+        surface, w, delta, skip = starts[j], branches[j].states[0], branches[j].delta[0], 1
         while True:
-            branch, fold, beyond = _branch(surface, w, delta, _UP, settings, far, report)
+            branch, fold, beyond, surface = _branch(grids, surface, w, delta, _UP, settings, far,
+                                                    report)
             extra.append(branch)
             rows += [point_row(branch, i, len(jumps)) for i in range(skip, len(branch.delta))]
             if fold is None:
@@ -150,7 +178,7 @@ def _retract(surface, settings, branches, counter, progress):
             if len(jumps) >= MAX_JUMPS:
                 raise ContinuationError(f"more than {MAX_JUMPS} jumps on retraction")
             rows.append(dict(delta=fold[0], **fold[1], branch=len(jumps)))
-            w, jump = _jump(surface, fold, beyond, settings, counter)
+            surface, w, jump = _jump(grids, surface, fold, beyond, settings, counter)
             jumps.append(jump)
             delta, skip = fold[0], 0
             known = _approach_branch(branches, delta, jump.x_after,

@@ -1,0 +1,185 @@
+"""Boundary-integral grids that follow the contact edge: the BEM at large μ.
+
+The cohesive zone at the contact edge is about μ^(−3/2) √(Rε) wide while the contact grows like
+μ^(1/2) √(Rε), so a grid uniformly fine enough for the edge needs n ∝ μ² nodes (μ = 10: 3021
+nodes, 23 min per curve; μ = 46.9: about 27,000 for the landing alone, beyond dense algebra).
+At large μ the edge has two parts: the contact radius ā_c (where the gap passes 1 ε) and,
+well outside it, the crack tip (`crack_tip`, where the adhered zone opens); between them the
+gap stays within 0.02 ε of 1 (μ = 5: ā_c = 2.48, tip 3.75). Here the grid is uniformly fine
+(h) only within a band of each (`edge_grid`); elsewhere its elements grow geometrically, as
+long as the LJ springs of each element stay weaker than its elastic stiffness (`spring_ratio`;
+coarser elements snap on their own and give the grid spurious equilibria). Before contact
+(and after a jump out of it) the grid is the small-μ BEM's (`bem.radial_grid`).
+
+`EdgeGrids.land` finds a stable state downhill in energy on the grid of its edges, moving the
+iterate to a new grid (w interpolated linearly) whenever its edges leave the current one's band
+(a landing's contact spreads over many grids); the path solver (`branches.stable_paths`) calls
+it after every jump and whenever a branch's edges leave the band, and records how much the force
+changed there (a measure of the discretisation error).
+"""
+
+import weakref
+
+import numpy as np
+
+from ._checks import InputError
+from .bem import BoussinesqSurface, radial_grid
+from .continuation import ContinuationError
+from .landing import land
+from .lj import scaled_traction_slope
+from .surface import LJSurface
+
+#: A landing on grids that follow the edge runs in stages of LANDING_STAGE iterations (then
+#: moves to the grid of the iterate's edges if they left the band), at most MAX_STAGES of them.
+LANDING_STAGE, MAX_STAGES = 100, 60
+
+
+def spring_ratio(gap):
+    """How much longer than at the stiffest destabilising gap (1.399 ε) an element may be at
+    `gap` (in ε) and still be stable on its own: max dp̄/dh / (dp̄/dh at the gap), ≥ 1, growing
+    like gap⁴/6, unbounded (1e12) below 3^(1/6) ε where the springs stabilise. An element of a grid is unstable on its own where its LJ springs, ∝ μ^(3/2)
+    (dp̄/dh) × its length, outgrow its elastic stiffness; on a grid coarse there it snaps on its
+    own (measured at μ = 5: two states 0.02 apart in P̄ at one δ̄o, 1.3 √(Rε) outside the edge)."""
+    return _STIFFEST_SLOPE / np.maximum(scaled_traction_slope(gap), 1e-12 * _STIFFEST_SLOPE)
+
+
+_STIFFEST_GAP = 7.5 ** (1.0 / 6.0)
+#: The gap (ε) that marks the crack tip, where the adhered zone (gaps ≈ 1 ε, in tension outside
+#: the compressive contact radius ā_c) opens: the stiffest destabilising gap. At large μ the
+#: tip lies well outside ā_c (μ = 5, δ̄o = 3: ā_c = 2.48, gaps below 1.02 ε up to r = 3.5).
+TIP_GAP = _STIFFEST_GAP
+_STIFFEST_SLOPE = float(scaled_traction_slope(_STIFFEST_GAP))
+
+
+def edge_grid(edge, tip, gap, *, h, band, r_max, growth=0.1, h_inside):
+    """Radial nodes from 0 to ≥ r_max (r in √(Rε)): spacing h within `band` of the contact
+    radius `edge` (ā_c) and of the crack `tip` (`crack_tip`); elsewhere element sizes grow by
+    at most (1 + growth) per element away from those bands, stay below h times the
+    `spring_ratio` of gap(r) (a callable: the gap in ε at radius r) and, inside the tip, below
+    `h_inside`."""
+    if not (0.0 < h <= band and 0.0 <= edge <= tip and tip + band < r_max and h <= h_inside):
+        raise InputError(f"need 0 < h <= band, h <= h_inside, 0 <= edge <= tip < r_max - band; "
+                         f"got h={h}, band={band}, edge={edge}, tip={tip}, r_max={r_max}, "
+                         f"h_inside={h_inside}")
+
+    def size(r):
+        distance = max(min(abs(r - edge), abs(r - tip)) - band, 0.0)
+        cap = h_inside if r < tip else np.inf
+        return min(h + growth * distance, cap, h * float(spring_ratio(gap(r))))
+
+    nodes, last = [0.0], np.inf
+    while nodes[-1] < r_max:
+        last = min(size(nodes[-1]), (1.0 + growth) * last)
+        nodes.append(nodes[-1] + last)
+    return np.asarray(nodes)
+
+
+def crack_tip(surface, w, delta):
+    """Outermost radius (√(Rε)) where the gap rises through TIP_GAP (linear between nodes), or
+    0.0 where the gap exceeds it everywhere (no contact)."""
+    gaps = delta + surface.node_profile - w
+    below = np.nonzero(gaps <= TIP_GAP)[0]
+    if below.size == 0:
+        return 0.0
+    i = below[-1]
+    if i + 1 == gaps.size:
+        return float(surface.r_nodes[-1])
+    r0, r1, g0, g1 = surface.r_nodes[i], surface.r_nodes[i + 1], gaps[i], gaps[i + 1]
+    return float(r0 + (r1 - r0) * (TIP_GAP - g0) / (g1 - g0))
+
+
+class EdgeGrids:
+    """The surfaces of one curve: the uniform pre-contact grid and grids centred on crack tips,
+    each an `LJSurface` on a `BoussinesqSurface`, built on demand.
+
+    h, band, h_inside, growth: as `edge_grid`; contact_h, contact_r: spacing and extent of the
+    uniform pre-contact grid; r_max: the traction radius. Counters: `regrids` (grids built),
+    `largest_nodes`, `largest_change` (the largest |ΔP̄| of a state moved to a new grid while
+    on a branch: a measure of the discretisation error).
+    """
+
+    def __init__(self, mu, *, h, band, h_inside, contact_h, contact_r, r_max, growth=0.1,
+                 radius_ratio=None):
+        self.mu, self.h, self.band, self.h_inside = mu, h, band, h_inside
+        self.r_max, self.growth, self.radius_ratio = r_max, growth, radius_ratio
+        self._built_for = weakref.WeakKeyDictionary()  # surface → (ā_c, tip) it was built for
+        self.start = self._surface(radial_grid(h=contact_h, r_fine=contact_r, r_max=r_max,
+                                               growth=growth), (0.0, 0.0))
+        self.regrids, self.largest_change, self.largest_nodes = 0, 0.0, self.start.r_nodes.size
+
+    def _surface(self, nodes, edges):
+        surface = LJSurface(BoussinesqSurface(nodes), self.mu, radius_ratio=self.radius_ratio)
+        self._built_for[surface] = edges
+        return surface
+
+    @staticmethod
+    def _edges(surface, w, delta):
+        """(ā_c, crack tip) of the state (w, δ̄o); (0, 0) without contact."""
+        tip = crack_tip(surface, w, delta)
+        return (surface.contact(w, delta)[1], tip) if tip > 0.0 else (0.0, 0.0)
+
+    def fits(self, surface, w, delta):
+        """Whether `surface` resolves the state (w, δ̄o): without a crack tip (`crack_tip`) the
+        pre-contact grid, else the grid of an ā_c and a tip each within half a band of this
+        state's (a surface not built here never fits)."""
+        built, edges = self._built_for.get(surface), self._edges(surface, w, delta)
+        if built is None:
+            return False
+        if built[1] == 0.0 or edges[1] == 0.0:
+            return built[1] == edges[1]
+        return max(abs(edges[0] - built[0]), abs(edges[1] - built[1])) <= 0.5 * self.band
+
+    def _grid(self, surface, w, delta, edges):
+        """Nodes of the grid for the state (w, δ̄o) with its (ā_c, tip) `edges`; the elements
+        away from the band are sized for the gaps as if the tip had moved by half a band
+        either way (the smaller `spring_ratio` of the two), so the grid holds while it fits."""
+        gaps = delta + surface.node_profile - w
+        r, shift = surface.r_nodes, 0.5 * self.band
+        smaller = np.minimum(np.interp(r - shift, r, gaps), np.interp(r + shift, r, gaps))
+
+        def gap(radius):
+            return np.interp(radius, r, smaller)
+
+        return edge_grid(*edges, gap, h=self.h, band=self.band, r_max=self.r_max,
+                         growth=self.growth, h_inside=self.h_inside)
+
+    def land(self, surface, w, delta, *, tol=1e-9):
+        """(surface, w, Newton iterations): the stable state at δ̄o downhill from w
+        (`landing.land`), on the grid of its contact edge and crack tip. In stages of
+        LANDING_STAGE iterations: whenever the iterate no longer fits its grid (a landing's
+        contact spreads beyond it) it moves to the grid of its edges (w interpolated linearly).
+        Raises ContinuationError if MAX_STAGES stages do not get there."""
+        iterations = 0
+        for _ in range(MAX_STAGES):
+            if not self.fits(surface, w, delta):
+                edges = self._edges(surface, w, delta)
+                new = (self._surface(self._grid(surface, w, delta, edges), edges)
+                       if edges[1] > 0.0 else self.start)
+                self.regrids += 1
+                self.largest_nodes = max(self.largest_nodes, new.r_nodes.size)
+                surface, w = new, np.interp(new.r_nodes, surface.r_nodes, w)
+            landed = land(surface, w, delta, tol=tol, max_iterations=LANDING_STAGE)
+            w, iterations = landed.w, iterations + landed.iterations
+            if landed.converged and self.fits(surface, w, delta):
+                return surface, w, iterations
+        raise ContinuationError(f"no stable state on a grid that fits it at δ = {delta:.6g} "
+                                f"({MAX_STAGES} stages of landing)")
+
+
+class FixedGrid:
+    """The one surface of a curve on a fixed mesh or grid (FE, uniform BEM): nothing moves."""
+
+    regrids, largest_change = 0, 0.0
+
+    def __init__(self, surface):
+        self.start = surface
+
+    def fits(self, surface, w, delta):
+        return True
+
+    def land(self, surface, w, delta, *, tol=1e-9):
+        """(surface, w, Newton iterations) of `landing.land`; ContinuationError if it fails."""
+        landed = land(surface, w, delta, tol=tol)
+        if not landed.converged:
+            raise ContinuationError(f"no stable state found downhill at δ = {delta:.6g}")
+        return surface, landed.w, landed.iterations

@@ -1,0 +1,83 @@
+"""Boundary-integral grids that follow the contact edge, against the uniform grid."""
+
+import numpy as np
+import pytest
+
+from fem_asperity import InputError
+from fem_asperity.accuracy import discretisation
+from fem_asperity.asperity import solve_discretised
+from fem_asperity.lj import scaled_traction_slope
+from fem_asperity.tracking import edge_grid, spring_ratio
+
+
+def test_spring_ratio_limits():
+    """1 at the stiffest destabilising gap 7.5^(1/6) ε, unbounded where the springs stabilise
+    (below 3^(1/6) ε), and max(dp̄/dh)/(8 g⁻⁴) for large gaps g."""
+    stiffest = 7.5 ** (1.0 / 6.0)
+    gaps = np.linspace(0.9, 30.0, 2000)
+    assert spring_ratio(stiffest) == pytest.approx(1.0, rel=1e-12)
+    assert np.all(spring_ratio(gaps) >= 1.0 - 1e-12)
+    assert spring_ratio(1.1) >= 1e11
+    peak = scaled_traction_slope(stiffest)
+    assert spring_ratio(30.0) == pytest.approx(peak * 30.0**4 / 8.0, rel=1e-6)
+
+
+def test_edge_grid_spacing():
+    h, band, growth = 0.004, 0.03, 0.1
+    edge, tip = 3.0, 4.0
+
+    def gap(r):
+        return np.where(r < tip, 1.0, 1.0 + 2.0 * (r - tip))
+
+    nodes = edge_grid(edge, tip, gap, h=h, band=band, r_max=100.0, growth=growth, h_inside=0.1)
+    sizes = np.diff(nodes)
+    assert nodes[0] == 0.0 and nodes[-1] >= 100.0 and np.all(sizes > 0.0)
+    left = nodes[:-1]
+    near = (np.abs(left - edge) <= band) | (np.abs(left - tip) <= band)
+    assert np.all(sizes[near] <= h * (1.0 + 1e-9))
+    assert np.all(sizes <= h * spring_ratio(gap(left)) * (1.0 + 1e-9))
+    assert np.all(sizes[left < tip] <= 0.1 + 1e-12)
+    assert np.all(sizes[1:] / sizes[:-1] <= 1.0 + growth + 1e-9)
+    with pytest.raises(InputError, match="edge"):
+        edge_grid(tip, edge, gap, h=h, band=band, r_max=100.0, h_inside=0.1)
+
+
+@pytest.fixture(scope="module")
+def mu5():
+    """(uniform grid, tracked grids) BEM `default` curves at μ = 5."""
+    uniform = solve_discretised(5.0, discretisation(5.0, method="bem", track_edge=False))
+    tracked = solve_discretised(5.0, discretisation(5.0, method="bem", track_edge=True))
+    return uniform, tracked
+
+
+def test_tracked_grids_give_the_uniform_grids_events(mu5):
+    """Measured: P̄max, P̄off, both jumps and the force after the jump-in agree to 1e-6; x̄oc
+    to 2.2e-5 (the grid before contact is 0.025 against the uniform grid's 0.0112); δ̄oc and
+    ā_c, on the flat force maximum, to 1.6e-3 and 7e-5."""
+    uniform, tracked = (r.events.records() for r in mu5)
+    for key in ("p_max", "p_off", "delta_jump_in", "p_jump_after", "delta_jump_out"):
+        assert tracked[key] == pytest.approx(uniform[key], rel=1e-5), key
+    assert tracked["x_oc"] == pytest.approx(uniform["x_oc"], rel=1e-4)
+    assert tracked["delta_oc"] == pytest.approx(uniform["delta_oc"], rel=5e-3)
+    assert tracked["a_c"] == pytest.approx(uniform["a_c"], rel=1e-3)
+
+
+def test_tracked_approach_force_follows_the_uniform_one(mu5):
+    """P̄(δ̄o) of the approach after the jump-in, interpolated at the tracked samples."""
+    uniform, tracked = (r.approach for r in mu5)
+    after_u, after_t = uniform.branch == 1, tracked.branch == 1
+    order = np.argsort(uniform.delta[after_u])
+    du, pu = uniform.delta[after_u][order], uniform.p[after_u][order]
+    inside = (tracked.delta >= du[0]) & (tracked.delta <= du[-1]) & after_t
+    expected = np.interp(tracked.delta[inside], du, pu)
+    assert inside.sum() > 20
+    assert np.max(np.abs(tracked.p[inside] - expected)) <= 2e-3
+
+
+def test_tracked_result_says_how_it_was_computed(mu5):
+    uniform, tracked = mu5
+    assert "grids followed the contact edge" in tracked.message
+    assert tracked.surface_nodes < 0.6 * uniform.surface_nodes and tracked.model is None
+    with pytest.raises(InputError, match="stable branches"):
+        solve_discretised(5.0, discretisation(5.0, method="bem", track_edge=True),
+                          unstable_branch=True)
