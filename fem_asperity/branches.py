@@ -9,6 +9,8 @@ factorisations and short steps, half the cost of the whole curve at μ = 5, most
 μ = 10) are never traced; `paths` reads the same paths off the whole curve instead.
 """
 
+from functools import partial
+
 import numpy as np
 
 from .continuation import (APPROACH, ContinuationError, Trace, approach_fraction, follow,
@@ -33,7 +35,8 @@ def _branch(grids, surface, w, delta, heading, settings, until, on_point):
         def done(tr):
             return until(tr) or not grids.fits(surface, tr.states[-1], tr.delta[-1])
 
-        traced, fold, beyond = _piece(surface, w, delta, heading, settings, done, on_point)
+        traced, fold, beyond = _piece(surface, w, delta, heading, settings, done, on_point,
+                                      partial(grids.admits, surface))
         if fold is not None or until(traced):
             merged.extend(traced)
             return merged, fold, beyond, surface
@@ -45,7 +48,7 @@ def _branch(grids, surface, w, delta, heading, settings, until, on_point):
         grids.largest_change = max(grids.largest_change, abs(surface.force(w, delta) - p_before))
 
 
-def _piece(surface, w, delta, heading, settings, until, on_point):
+def _piece(surface, w, delta, heading, settings, until, on_point, admissible=None):
     """(stable Trace from (w, δ) with its force extrema refined, fold, state past the fold):
     fold = (δ̄o, values before) at the branch's end, or None if `until` was met.
 
@@ -54,7 +57,7 @@ def _piece(surface, w, delta, heading, settings, until, on_point):
     through the last three points (`paths.fold_by_parabola`), or the start if the branch has
     no more."""
     traced = follow(surface, w, delta, heading, settings, until=until, stop_at_fold=True,
-                    on_point=on_point)
+                    on_point=on_point, admissible=admissible)
     fold = beyond = None
     if not traced.stable[-1]:
         k = len(traced.delta) - 2

@@ -232,6 +232,8 @@ def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10
         if not (reuse and linear.converged):
             linear = Linearisation(surface, w, delta, direction)
             dw, dd = linear.solve(rhs)
+        if not (np.isfinite(dd) and np.all(np.isfinite(dw))):
+            return None  # a single-precision factorisation of a singular matrix (μ = 46.9)
         alpha = gap_keeping_step(surface.gap(w, delta), dd - surface.interp @ dw)
         if scale is None:
             scale = 1.0 + np.max(np.abs(surface.stiffness @ w))
@@ -281,12 +283,16 @@ def start_state(surface, settings):
     return start[:3]
 
 
-def follow(surface, w, delta, heading, settings, *, until, stop_at_fold=False, on_point=None):
+def follow(surface, w, delta, heading, settings, *, until, stop_at_fold=False, on_point=None,
+           admissible=None):
     """Trace the equilibrium curve from the equilibrium (w, δ), setting off in the direction with
     heading · d(x̄o, δ̄o, P̄)/ds > 0, until `until(trace)` holds at a stable point or, with
     `stop_at_fold`, up to the first unstable point (kept as the trace's last point).
 
-    `on_point(trace)` is called after each accepted point. Raises ContinuationError if the step
+    `on_point(trace)` is called after each accepted point. `admissible(w, δ)`: a converged point
+    for which it is False is retried with a shorter step, like one that turned too far (the
+    surface resolves it only near where it was built, `tracking.EdgeGrids.admits`).
+    Raises ContinuationError if the step
     falls below ds_min, the point budget runs out or the path runs off beyond 2 x_start.
     """
     s = settings
@@ -328,6 +334,8 @@ def follow(surface, w, delta, heading, settings, *, until, stop_at_fold=False, o
             force, contact = surface.force(w_new, d_new), surface.contact(w_new, d_new)
             dp, da = abs(force - result.p[-1]), abs(contact[1] - result.a_c[-1])
             ratio = max(dp / s.dp, da / s.da, turn / s.turn, 1e-3)
+            if admissible is not None and not admissible(w_new, d_new):
+                ratio = max(ratio, 2.0)
             if ratio <= 1.0 or ds <= s.ds_min:
                 w, delta, row, tangent = w_new, d_new, t, tangent_new
                 result.append(surface, w, delta, linear.stable, force, contact, tangent[2])

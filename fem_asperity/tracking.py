@@ -129,6 +129,18 @@ class EdgeGrids:
             return built[1] == edges[1]
         return max(abs(edges[0] - built[0]), abs(edges[1] - built[1])) <= 0.5 * self.band
 
+    def admits(self, surface, w, delta):
+        """Whether `surface` still resolves the state (w, δ̄o), if no longer centred on it:
+        its ā_c and tip within a band of those it was built for (inside its fine zones), or
+        no contact on the pre-contact grid. A step beyond is retried shorter (`follow`): its
+        edge would lie on coarse elements, where the curve ripples and shows false folds
+        (μ = 46.9: a fold at a tip 0.7 √(Rε) before the jump-out, from which the landing came
+        back to the same branch)."""
+        built, edges = self._built_for.get(surface), self._edges(surface, w, delta)
+        if built is None or built[1] == 0.0 or edges[1] == 0.0:
+            return built is not None and built[1] == edges[1]
+        return max(abs(edges[0] - built[0]), abs(edges[1] - built[1])) <= self.band
+
     def _grid(self, surface, w, delta, edges):
         """Nodes of the grid for the state (w, δ̄o) with its (ā_c, tip) `edges`; the elements
         away from the band are sized for the gaps as if the tip had moved by half a band
@@ -175,6 +187,9 @@ class FixedGrid:
         self.start = surface
 
     def fits(self, surface, w, delta):
+        return True
+
+    def admits(self, surface, w, delta):
         return True
 
     def land(self, surface, w, delta, *, tol=1e-9):
