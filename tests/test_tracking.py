@@ -81,3 +81,21 @@ def test_tracked_result_says_how_it_was_computed(mu5):
     with pytest.raises(InputError, match="stable branches"):
         solve_discretised(5.0, discretisation(5.0, method="bem", track_edge=True),
                           unstable_branch=True)
+
+
+def test_grids_tell_which_states_they_resolve():
+    """The pre-contact grid resolves states without contact only; a surface built elsewhere
+    resolves none."""
+    from fem_asperity.tracking import EdgeGrids, crack_tip
+
+    grids = EdgeGrids(5.0, h=0.01, band=0.07, h_inside=0.1, contact_h=0.05, contact_r=4.0,
+                      r_max=100.0)
+    start, delta = grids.start, 3.0
+    apart = np.zeros(start.r_nodes.size)
+    touching = np.where(start.r_nodes < 1.0, delta + start.node_profile - 1.0, 0.0)
+    assert crack_tip(start, apart, delta) == 0.0 and crack_tip(start, touching, delta) > 0.9
+    assert grids.fits(start, apart, delta) and grids.admits(start, apart, delta)
+    assert not grids.fits(start, touching, delta) and not grids.admits(start, touching, delta)
+    other = EdgeGrids(5.0, h=0.01, band=0.07, h_inside=0.1, contact_h=0.05, contact_r=4.0,
+                      r_max=100.0).start
+    assert not grids.fits(other, apart, delta)
