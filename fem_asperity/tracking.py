@@ -181,8 +181,6 @@ class EdgeGrids:
 class FixedGrid:
     """The one surface of a curve on a fixed mesh or grid (FE, uniform BEM): nothing moves."""
 
-    regrids, largest_change = 0, 0.0
-
     def __init__(self, surface):
         self.start = surface
 
