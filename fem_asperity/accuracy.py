@@ -53,9 +53,10 @@ FE_GRADING = 0.2
 #: From this μ on the boundary-integral grid follows the contact edge (`tracking`): fine
 #: (h_surface) only on the band from BAND_COHESIVE μ^(−3/2) inside the contact radius to as far
 #: outside the crack tip, sized by the LJ spring stiffness elsewhere, at most H_INSIDE inside
-#: the contact. μ = 5, `default`: P̄max, P̄off and the jump-out agree with the uniform grid's
-#: to 3e-6, 3e-6 and 1e-8 (6.6 s against 8.0 s, at most 378 nodes against 806); δ̄oc, on the
-#: flat force maximum, to 3e-3. A state moved to a new grid changes P̄ by ≤ 1e-5.
+#: the contact. μ = 5, `default`: P̄max, P̄off and both jumps agree with the uniform grid's to
+#: 1e-6 (4.4 s against 8.0 s, at most 360 nodes against 806); δ̄oc, on the flat force maximum,
+#: to 1.6e-3. A state moved to a new grid changes P̄ by ≤ 1.5e-5. μ = 10: 34.5 s against
+#: 1356 s. At μ ≥ 6 `draft` (elements twice as long) ripples: 266 folds, 157 s at μ = 10.
 MU_TRACKING = 6.0
 BAND_COHESIVE, H_INSIDE = 8.0, 0.1
 #: Methods: finite elements ('fem') or the boundary-integral solver ('bem').
@@ -113,6 +114,8 @@ def discretisation(mu, accuracy="default", *, p_end=1.0, method="fem", track_edg
     method ('fem' or 'bem'). track_edge (BEM only): grids that follow the contact edge (True),
     one uniform grid (False), or the first from μ = MU_TRACKING on (None)."""
     mu = positive("mu", mu)
+    if track_edge and method != "bem":
+        raise InputError(f"track_edge needs method 'bem'; got method {method!r}")
     if accuracy not in PRESETS:
         raise InputError(f"accuracy must be one of {', '.join(PRESETS)}; got {accuracy!r}")
     if method not in METHODS:

@@ -37,9 +37,9 @@ LANDING_STAGE, MAX_STAGES = 100, 60
 def spring_ratio(gap):
     """How much longer than at the stiffest destabilising gap (1.399 ε) an element may be at
     `gap` (in ε) and still be stable on its own: max dp̄/dh / (dp̄/dh at the gap), ≥ 1, growing
-    like gap⁴/6, unbounded (1e12) below 3^(1/6) ε where the springs stabilise. An element of a grid is unstable on its own where its LJ springs, ∝ μ^(3/2)
-    (dp̄/dh) × its length, outgrow its elastic stiffness; on a grid coarse there it snaps on its
-    own (measured at μ = 5: two states 0.02 apart in P̄ at one δ̄o, 1.3 √(Rε) outside the edge)."""
+    like gap⁴/6, unbounded (1e12) below 3^(1/6) ε where the springs stabilise. An element of
+    a grid is unstable on its own where its LJ springs, ∝ μ^(3/2) (dp̄/dh) × its length, outgrow
+    its elastic stiffness; on a grid coarse there it snaps on its own (measured at μ = 5: two states 0.02 apart in P̄ at one δ̄o, 1.3 √(Rε) outside the edge)."""
     return _STIFFEST_SLOPE / np.maximum(scaled_traction_slope(gap), 1e-12 * _STIFFEST_SLOPE)
 
 
@@ -89,8 +89,8 @@ def crack_tip(surface, w, delta):
 
 
 class EdgeGrids:
-    """The surfaces of one curve: the uniform pre-contact grid and grids centred on crack tips,
-    each an `LJSurface` on a `BoussinesqSurface`, built on demand.
+    """The surfaces of one curve: the uniform pre-contact grid and grids fine at a contact
+    radius and crack tip, each an `LJSurface` on a `BoussinesqSurface`, built on demand.
 
     h, band, h_inside, growth: as `edge_grid`; contact_h, contact_r: spacing and extent of the
     uniform pre-contact grid; r_max: the traction radius. Counters: `regrids` (grids built),
@@ -119,27 +119,26 @@ class EdgeGrids:
         return (surface.contact(w, delta)[1], tip) if tip > 0.0 else (0.0, 0.0)
 
     def fits(self, surface, w, delta):
-        """Whether `surface` resolves the state (w, δ̄o): without a crack tip (`crack_tip`) the
-        pre-contact grid, else the grid of an ā_c and a tip each within half a band of this
-        state's (a surface not built here never fits)."""
-        built, edges = self._built_for.get(surface), self._edges(surface, w, delta)
-        if built is None:
-            return False
-        if built[1] == 0.0 or edges[1] == 0.0:
-            return built[1] == edges[1]
-        return max(abs(edges[0] - built[0]), abs(edges[1] - built[1])) <= 0.5 * self.band
+        """Whether `surface` resolves the state (w, δ̄o) as a grid built for it would: without a
+        crack tip (`crack_tip`) the pre-contact grid, else the grid of an ā_c and a tip each
+        within half a band of this state's (a surface not built here never fits)."""
+        return self._within(surface, w, delta, 0.5 * self.band)
 
     def admits(self, surface, w, delta):
         """Whether `surface` still resolves the state (w, δ̄o), if no longer centred on it:
-        its ā_c and tip within a band of those it was built for (inside its fine zones), or
-        no contact on the pre-contact grid. A step beyond is retried shorter (`follow`): its
-        edge would lie on coarse elements, where the curve ripples and shows false folds
-        (μ = 46.9: a fold at a tip 0.7 √(Rε) before the jump-out, from which the landing came
-        back to the same branch)."""
+        its ā_c and tip within a band of those it was built for (inside its fine zones). A step
+        beyond is retried shorter (`follow`): its edge would lie on coarse elements, where the
+        curve ripples and shows false folds (μ = 46.9: a fold at a tip 0.7 √(Rε) before the
+        jump-out, from which the landing came back to the same branch)."""
+        return self._within(surface, w, delta, self.band)
+
+    def _within(self, surface, w, delta, reach):
+        """No contact on the pre-contact grid, or ā_c and tip within `reach` of those the
+        surface was built for; False for a surface not built here."""
         built, edges = self._built_for.get(surface), self._edges(surface, w, delta)
         if built is None or built[1] == 0.0 or edges[1] == 0.0:
             return built is not None and built[1] == edges[1]
-        return max(abs(edges[0] - built[0]), abs(edges[1] - built[1])) <= self.band
+        return max(abs(edges[0] - built[0]), abs(edges[1] - built[1])) <= reach
 
     def _grid(self, surface, w, delta, edges):
         """Nodes of the grid for the state (w, δ̄o) with its (ā_c, tip) `edges`; the elements

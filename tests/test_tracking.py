@@ -78,6 +78,8 @@ def test_tracked_result_says_how_it_was_computed(mu5):
     uniform, tracked = mu5
     assert "grids followed the contact edge" in tracked.message
     assert tracked.surface_nodes < 0.6 * uniform.surface_nodes and tracked.model is None
+    with pytest.raises(InputError, match="track_edge needs method 'bem'"):
+        discretisation(5.0, method="fem", track_edge=True)
     with pytest.raises(InputError, match="stable branches"):
         solve_discretised(5.0, discretisation(5.0, method="bem", track_edge=True),
                           unstable_branch=True)
