@@ -39,7 +39,8 @@ def spring_ratio(gap):
     `gap` (in ε) and still be stable on its own: max dp̄/dh / (dp̄/dh at the gap), ≥ 1, growing
     like gap⁴/6, unbounded (1e12) below 3^(1/6) ε where the springs stabilise. An element of
     a grid is unstable on its own where its LJ springs, ∝ μ^(3/2) (dp̄/dh) × its length, outgrow
-    its elastic stiffness; on a grid coarse there it snaps on its own (measured at μ = 5: two states 0.02 apart in P̄ at one δ̄o, 1.3 √(Rε) outside the edge)."""
+    its elastic stiffness; on a grid coarse there it snaps on its own (measured at μ = 5: two
+    states 0.02 apart in P̄ at one δ̄o, 1.3 √(Rε) outside the edge)."""
     return _STIFFEST_SLOPE / np.maximum(scaled_traction_slope(gap), 1e-12 * _STIFFEST_SLOPE)
 
 
