@@ -8,6 +8,7 @@ import sys
 import warnings
 
 from ._checks import InputError
+from .continuation import ContinuationError
 
 
 class Parser(argparse.ArgumentParser):
@@ -23,7 +24,8 @@ def _warn_one_line(message, *_args, **_kwargs):
 
 def run(main, prog, argv=None):
     """Call `main(argv)`: warnings print as one line, an `InputError` as one line + exit code 2,
-    an `OSError` (e.g. an output folder that cannot be written) as one line + exit code 1."""
+    an `OSError` (e.g. an output folder that cannot be written) or a `ContinuationError` (a
+    curve the solver could not follow, e.g. the retraction at μ = 46.9) as one line + exit code 1."""
     with warnings.catch_warnings():
         warnings.showwarning = _warn_one_line
         try:
@@ -34,7 +36,7 @@ def run(main, prog, argv=None):
         except BrokenPipeError:  # output piped into e.g. `head`, which stopped reading
             sys.stdout = open(os.devnull, "w")
             return 0
-        except OSError as exc:
+        except (OSError, ContinuationError) as exc:
             print(f"{prog}: error: {exc}", file=sys.stderr)
             return 1
 

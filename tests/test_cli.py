@@ -174,3 +174,16 @@ def test_onset_json():
     assert set(row) == {"mu_onset", "lo", "hi", "method", "accuracy", "evaluations", "wall_s"}
     assert row["lo"] <= row["mu_onset"] <= row["hi"] and row["hi"] - row["lo"] <= 0.01
     assert 0.69 < row["mu_onset"] < 0.705  # FE fold margins change sign between 0.69 and 0.70
+
+
+def test_a_curve_the_solver_cannot_follow_is_one_line_exit_1(capsys):
+    """`_cli.run` (all three command lines) reports a ContinuationError as one line, code 1."""
+    from fem_asperity._cli import run
+    from fem_asperity.continuation import ContinuationError
+
+    def main(argv):
+        raise ContinuationError("no stable state at δ = 75.7754")
+
+    assert run(main, "prog", []) == 1
+    err = capsys.readouterr().err
+    assert err == "prog: error: no stable state at δ = 75.7754\n"
