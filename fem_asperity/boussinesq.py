@@ -10,7 +10,8 @@ singularity at s = r, K(m) = P(m₁) − Q(m₁) ln m₁ with m₁ = 1 − m = (
 Q(m₁) = K(m₁)/π analytic, and the whole kernel is singular on the circle |s| = r of the complex
 s-plane. The integral over each element of the radial grid is therefore done in three ways:
 
-- far from r (distance ≥ the element's length): Gauss-Legendre, 8 points, error ≈ 5.8⁻¹⁶;
+- far from r (distance ≥ the element's length): Gauss-Legendre, 8 points, error ≈ 5.8⁻¹⁶, and
+  fewer (4, 2) where that is as accurate (`_FAR_TIERS`);
 - near r: as ∫_r^b − ∫_r^a, each split into pieces that double in length away from r, so that
   every piece is at least its own length away from the singular circle;
 - on the piece that starts at r: the log term −2 f Q̃(m₁) ln|s−r| (Q̃ the Taylor polynomial of
@@ -67,6 +68,13 @@ def _unit_gauss(n):
 
 _GL = _unit_gauss(_POINTS)
 _LOG = log_gauss(_POINTS)
+#: Far-field rules by the distance from r to an element, in element lengths: Gauss-Legendre with
+#: 8, 4, 2 points, whose error ρ^(−2n) (ρ = x + √(x² − 1), x = 1 + 2 × distance/length) is at
+#: most the 8-point rule's at one length, 5.7e-13. At 615 nodes (μ = 46.9) 44% of the pairs lie
+#: in the last tier and 52% in the middle one: 0.30 s for the matrix against 0.38 s with 8
+#: points throughout (best of 5).
+_FAR_TIERS = ((1.0, 9.0), (9.0, 300.0), (300.0, np.inf))
+_FAR_RULES = tuple(_unit_gauss(n) for n in (8, 4, 2))
 
 
 def kernel(r, s):
@@ -127,24 +135,24 @@ def displacement_matrix(nodes, r):
     r = np.asarray(r, dtype=float)
     a, b = nodes[:-1], nodes[1:]
     length = b - a
-    x, wx = _GL
-    s = a[:, None] + length[:, None] * x  # (elements, points)
     A = np.zeros((r.size, nodes.size))
-    rows = max(1, _CHUNK // s.size)
+    rows = max(1, _CHUNK // (_POINTS * a.size))
     for start in range(0, r.size, rows):
         rr = r[start:start + rows]
-        distance = np.maximum(a - rr[:, None], rr[:, None] - b)  # < 0 inside an element
-        far = (distance >= length) | (rr[:, None] == 0.0)
-        k = np.where(far[:, :, None], kernel(rr[:, None, None], s), 0.0) * (wx * length[:, None])
-        i1 = (k * x).sum(2)
-        i0 = k.sum(2)
+        ratio = np.maximum(a - rr[:, None], rr[:, None] - b) / length  # < 0 inside an element
+        ratio[rr == 0.0] = _FAR_TIERS[-1][0]  # the kernel is 2 at r = 0: any rule is exact
+        i0, i1 = np.empty(ratio.size), np.empty(ratio.size)
+        for (lowest, highest), (x, wx) in zip(_FAR_TIERS, _FAR_RULES):
+            pairs = np.flatnonzero((ratio >= lowest) & (ratio < highest))
+            q, e = np.divmod(pairs, a.size)
+            k = kernel(rr[q, None], a[e, None] + length[e, None] * x) * (wx * length[e, None])
+            i0[pairs], i1[pairs] = k.sum(1), k @ x
+        pairs = np.flatnonzero(ratio < _FAR_TIERS[0][0])
+        q, e = np.divmod(pairs, a.size)
+        hi0, hi1 = _from_point(rr[q], b[e], a[e], length[e])
+        lo0, lo1 = _from_point(rr[q], a[e], a[e], length[e])
+        i0[pairs], i1[pairs] = hi0 - lo0, hi1 - lo1
+        i0, i1 = i0.reshape(ratio.shape), i1.reshape(ratio.shape)
         A[start:start + rows, :-1] += i0 - i1
         A[start:start + rows, 1:] += i1
-        q, e = np.nonzero(~far)
-        rq = rr[q]
-        hi0, hi1 = _from_point(rq, b[e], a[e], length[e])
-        lo0, lo1 = _from_point(rq, a[e], a[e], length[e])
-        i0, i1 = hi0 - lo0, hi1 - lo1
-        np.add.at(A, (start + q, e), i0 - i1)
-        np.add.at(A, (start + q, e + 1), i1)
     return A
