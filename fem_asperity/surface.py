@@ -60,6 +60,12 @@ def derjaguin_profile(r, radius_ratio=None):
     return np.where(x < 1.0, radius_ratio * x / (1.0 + np.sqrt(1.0 - x)), np.inf)
 
 
+#: The gap (ε) that marks the crack tip, where the adhered zone (gaps ≈ 1 ε, in tension outside
+#: the compressive contact radius ā_c) opens: the stiffest destabilising gap, 7.5^(1/6). At large
+#: μ the tip lies well outside ā_c (μ = 5, δ̄o = 3: ā_c = 2.48, gaps below 1.02 ε up to r = 3.5).
+TIP_GAP = 7.5 ** (1.0 / 6.0)
+
+
 class LJSurface:
     """Residual, tangent and derived quantities of the surface problem at one μ."""
 
@@ -150,6 +156,19 @@ class LJSurface:
         h0 = delta + self.node_profile[i] - w[i] - 1.0
         h1 = delta + self.node_profile[i + 1] - w[i + 1] - 1.0
         return float(r0 + (r1 - r0) * h0 / (h0 - h1))
+
+    def crack_tip(self, w, delta):
+        """Outermost radius (√(Rε)) where the gap rises through TIP_GAP (linear between nodes),
+        or 0.0 where the gap exceeds it everywhere (no contact)."""
+        gaps = delta + self.node_profile - w
+        below = np.nonzero(gaps <= TIP_GAP)[0]
+        if below.size == 0:
+            return 0.0
+        i = below[-1]
+        if i + 1 == gaps.size:
+            return float(self.r_nodes[-1])
+        r0, r1, g0, g1 = self.r_nodes[i], self.r_nodes[i + 1], gaps[i], gaps[i + 1]
+        return float(r0 + (r1 - r0) * (TIP_GAP - g0) / (g1 - g0))
 
     def centre_gap(self, w, delta):
         """x̄o = h(0) = δ − w(0), in ε."""

@@ -4,8 +4,8 @@ The cohesive zone at the contact edge is about μ^(−3/2) √(Rε) wide while t
 μ^(1/2) √(Rε), so a grid uniformly fine enough for the edge needs n ∝ μ² nodes (μ = 10: 3021
 nodes, 23 min per curve; μ = 46.9: about 27,000 for the landing alone, beyond dense algebra).
 At large μ the edge has two parts: the contact radius ā_c (where the gap passes 1 ε) and,
-well outside it, the crack tip (`crack_tip`, where the adhered zone opens); between them the
-gap stays within 0.02 ε of 1 (μ = 5: ā_c = 2.48, tip 3.75). Here the grid is uniformly fine
+well outside it, the crack tip (`LJSurface.crack_tip`, where the adhered zone opens); between
+them the gap stays within 0.02 ε of 1 (μ = 5: ā_c = 2.48, tip 3.75). Here the grid is uniformly fine
 (h) only within a band of each (`edge_grid`); elsewhere its elements grow geometrically, as
 long as the LJ springs of each element stay weaker than its elastic stiffness (`spring_ratio`;
 coarser elements snap on their own and give the grid spurious equilibria). Before contact
@@ -27,11 +27,12 @@ from .bem import BoussinesqSurface, radial_grid
 from .continuation import ContinuationError
 from .landing import land
 from .lj import scaled_traction_slope
-from .surface import LJSurface
+from .surface import TIP_GAP, LJSurface
 
 #: A landing on grids that follow the edge runs in stages of LANDING_STAGE iterations (then
 #: moves to the grid of the iterate's edges if they left the band), at most MAX_STAGES of them.
 LANDING_STAGE, MAX_STAGES = 100, 60
+_STIFFEST_SLOPE = float(scaled_traction_slope(TIP_GAP))
 
 
 def spring_ratio(gap):
@@ -44,18 +45,10 @@ def spring_ratio(gap):
     return _STIFFEST_SLOPE / np.maximum(scaled_traction_slope(gap), 1e-12 * _STIFFEST_SLOPE)
 
 
-_STIFFEST_GAP = 7.5 ** (1.0 / 6.0)
-#: The gap (ε) that marks the crack tip, where the adhered zone (gaps ≈ 1 ε, in tension outside
-#: the compressive contact radius ā_c) opens: the stiffest destabilising gap. At large μ the
-#: tip lies well outside ā_c (μ = 5, δ̄o = 3: ā_c = 2.48, gaps below 1.02 ε up to r = 3.5).
-TIP_GAP = _STIFFEST_GAP
-_STIFFEST_SLOPE = float(scaled_traction_slope(_STIFFEST_GAP))
-
-
 def edge_grid(edge, tip, gap, *, h, band, r_max, growth=0.1, h_inside):
     """Radial nodes from 0 to ≥ r_max (r in √(Rε)): spacing h within `band` of the contact
-    radius `edge` (ā_c) and of the crack `tip` (`crack_tip`); elsewhere element sizes grow by
-    at most (1 + growth) per element away from those bands, stay below h times the
+    radius `edge` (ā_c) and of the crack `tip` (`LJSurface.crack_tip`); elsewhere element sizes
+    grow by at most (1 + growth) per element away from those bands, stay below h times the
     `spring_ratio` of gap(r) (a callable: the gap in ε at radius r) and, inside the tip, below
     `h_inside`."""
     if not (0.0 < h <= band and 0.0 <= edge <= tip and tip + band < r_max and h <= h_inside):
@@ -73,20 +66,6 @@ def edge_grid(edge, tip, gap, *, h, band, r_max, growth=0.1, h_inside):
         last = min(size(nodes[-1]), (1.0 + growth) * last)
         nodes.append(nodes[-1] + last)
     return np.asarray(nodes)
-
-
-def crack_tip(surface, w, delta):
-    """Outermost radius (√(Rε)) where the gap rises through TIP_GAP (linear between nodes), or
-    0.0 where the gap exceeds it everywhere (no contact)."""
-    gaps = delta + surface.node_profile - w
-    below = np.nonzero(gaps <= TIP_GAP)[0]
-    if below.size == 0:
-        return 0.0
-    i = below[-1]
-    if i + 1 == gaps.size:
-        return float(surface.r_nodes[-1])
-    r0, r1, g0, g1 = surface.r_nodes[i], surface.r_nodes[i + 1], gaps[i], gaps[i + 1]
-    return float(r0 + (r1 - r0) * (TIP_GAP - g0) / (g1 - g0))
 
 
 class EdgeGrids:
@@ -116,12 +95,12 @@ class EdgeGrids:
     @staticmethod
     def _edges(surface, w, delta):
         """(ā_c, crack tip) of the state (w, δ̄o); (0, 0) without contact."""
-        tip = crack_tip(surface, w, delta)
+        tip = surface.crack_tip(w, delta)
         return (surface.contact(w, delta)[1], tip) if tip > 0.0 else (0.0, 0.0)
 
     def fits(self, surface, w, delta):
         """Whether `surface` resolves the state (w, δ̄o) as a grid built for it would: without a
-        crack tip (`crack_tip`) the pre-contact grid, else the grid of an ā_c and a tip each
+        crack tip (`LJSurface.crack_tip`) the pre-contact grid, else the grid of an ā_c and a tip each
         within half a band of this state's (a surface not built here never fits)."""
         return self._within(surface, w, delta, 0.5 * self.band)
 

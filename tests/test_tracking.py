@@ -1,5 +1,7 @@
 """Boundary-integral grids that follow the contact edge, against the uniform grid."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -44,10 +46,12 @@ def test_edge_grid_spacing():
 
 @pytest.fixture(scope="module")
 def mu5():
-    """(uniform grid, tracked grids) BEM `default` curves at μ = 5."""
-    uniform = solve_discretised(5.0, discretisation(5.0, method="bem", track_edge=False))
-    tracked = solve_discretised(5.0, discretisation(5.0, method="bem", track_edge=True))
-    return uniform, tracked
+    """(uniform grid, tracked grids) BEM `default` curves at μ = 5, the tracked grids' edge
+    elements as long as the uniform grid's (by default they are half as long)."""
+    uniform = discretisation(5.0, method="bem", track_edge=False)
+    tracked = replace(discretisation(5.0, method="bem", track_edge=True),
+                      h_surface=uniform.h_surface)
+    return solve_discretised(5.0, uniform), solve_discretised(5.0, tracked)
 
 
 def test_tracked_grids_give_the_uniform_grids_events(mu5):
@@ -88,14 +92,14 @@ def test_tracked_result_says_how_it_was_computed(mu5):
 def test_grids_tell_which_states_they_resolve():
     """The pre-contact grid resolves states without contact only; a surface built elsewhere
     resolves none."""
-    from fem_asperity.tracking import EdgeGrids, crack_tip
+    from fem_asperity.tracking import EdgeGrids
 
     grids = EdgeGrids(5.0, h=0.01, band=0.07, h_inside=0.1, contact_h=0.05, contact_r=4.0,
                       r_max=100.0)
     start, delta = grids.start, 3.0
     apart = np.zeros(start.r_nodes.size)
     touching = np.where(start.r_nodes < 1.0, delta + start.node_profile - 1.0, 0.0)
-    assert crack_tip(start, apart, delta) == 0.0 and crack_tip(start, touching, delta) > 0.9
+    assert start.crack_tip(apart, delta) == 0.0 and start.crack_tip(touching, delta) > 0.9
     assert grids.fits(start, apart, delta) and grids.admits(start, apart, delta)
     assert not grids.fits(start, touching, delta) and not grids.admits(start, touching, delta)
     other = EdgeGrids(5.0, h=0.01, band=0.07, h_inside=0.1, contact_h=0.05, contact_r=4.0,
