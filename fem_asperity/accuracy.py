@@ -53,10 +53,10 @@ FE_GRADING = 0.2
 #: From this μ on the boundary-integral grid follows the contact edge (`tracking`): fine
 #: (h_surface) only on the band from BAND_COHESIVE μ^(−3/2) inside the contact radius to as far
 #: outside the crack tip, sized by the LJ spring stiffness elsewhere, at most H_INSIDE inside
-#: the contact. μ = 5, `default`: P̄max, P̄off and both jumps agree with the uniform grid's to
-#: 1e-6 (4.4 s against 8.0 s, at most 360 nodes against 806); δ̄oc, on the flat force maximum,
-#: to 1.6e-3. A state moved to a new grid changes P̄ by ≤ 1.5e-5. μ = 10: 34.5 s against
-#: 1356 s. At μ ≥ 6 `draft` (elements twice as long) ripples: 266 folds, 157 s at μ = 10.
+#: the contact. μ = 5, with edge elements as long as the uniform grid's: P̄max, P̄off and both
+#: jumps agree with the uniform grid's to 1e-6 (test). `default`, one BLAS thread: μ = 5 8.0 s
+#: (at most 638 nodes) against 8.3 s (806 nodes, uniform); μ = 10 32 s (763) against 1356 s
+#: (3021); μ = 46.9, where a uniform grid would need some 27,000 nodes, see the README.
 MU_TRACKING = 6.0
 BAND_COHESIVE, H_INSIDE = 8.0, 0.1
 #: Element length at the edge of grids that follow it, `default`: H_COHESIVE_TRACKING μ^(−3/2),

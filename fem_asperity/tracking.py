@@ -30,8 +30,10 @@ from .lj import scaled_traction_slope
 from .surface import TIP_GAP, LJSurface
 
 #: A landing on grids that follow the edge runs in stages of LANDING_STAGE iterations (then
-#: moves to the grid of the iterate's edges if they left the band), at most MAX_STAGES of them.
-LANDING_STAGE, MAX_STAGES = 100, 60
+#: moves to the grid of the iterate's edges if they left the band), at most MAX_STAGES of them:
+#: the jump-out at μ = 46.9, whose crack tip shrinks from 5.0 √(Rε) to 0 starting from next
+#: to the fold, where the descent creeps, took about 100 stages (9317 iterations, 77 s).
+LANDING_STAGE, MAX_STAGES = 100, 500
 _STIFFEST_SLOPE = float(scaled_traction_slope(TIP_GAP))
 
 
@@ -92,11 +94,12 @@ class EdgeGrids:
         self._built_for[surface] = edges
         return surface
 
-    @staticmethod
-    def _edges(surface, w, delta):
-        """(ā_c, crack tip) of the state (w, δ̄o); (0, 0) without contact."""
+    def _edges(self, surface, w, delta):
+        """(ā_c, crack tip) of the state (w, δ̄o); (0, 0) without contact or with a tip inside
+        the band (a neck about to detach, on the pre-contact grid: at μ = 46.9 a landing whose
+        tip shrank to 0.046 moved to a grid on which the neck's gaps were negative)."""
         tip = surface.crack_tip(w, delta)
-        return (surface.contact(w, delta)[1], tip) if tip > 0.0 else (0.0, 0.0)
+        return (surface.contact(w, delta)[1], tip) if tip > self.band else (0.0, 0.0)
 
     def fits(self, surface, w, delta):
         """Whether `surface` resolves the state (w, δ̄o) as a grid built for it would: without a
@@ -143,18 +146,25 @@ class EdgeGrids:
         iterations = 0
         for _ in range(MAX_STAGES):
             if not self.fits(surface, w, delta):
-                edges = self._edges(surface, w, delta)
-                new = (self._surface(self._grid(surface, w, delta, edges), edges)
-                       if edges[1] > 0.0 else self.start)
-                self.regrids += 1
-                self.largest_nodes = max(self.largest_nodes, new.r_nodes.size)
-                surface, w = new, np.interp(new.r_nodes, surface.r_nodes, w)
+                surface, w = self._moved(surface, w, delta)
             landed = land(surface, w, delta, tol=tol, max_iterations=LANDING_STAGE)
             w, iterations = landed.w, iterations + landed.iterations
+            if not np.all(np.isfinite(w)):
+                raise ContinuationError(f"the landing at δ = {delta:.6g} diverged")
             if landed.converged and self.fits(surface, w, delta):
                 return surface, w, iterations
         raise ContinuationError(f"no stable state on a grid that fits it at δ = {delta:.6g} "
                                 f"({MAX_STAGES} stages of landing)")
+
+    def _moved(self, surface, w, delta):
+        """(surface, w) of the state (w, δ̄o) moved to the grid of its edges (the pre-contact
+        grid without contact), w interpolated linearly."""
+        edges = self._edges(surface, w, delta)
+        new = (self._surface(self._grid(surface, w, delta, edges), edges)
+               if edges[1] > 0.0 else self.start)
+        self.regrids += 1
+        self.largest_nodes = max(self.largest_nodes, new.r_nodes.size)
+        return new, np.interp(new.r_nodes, surface.r_nodes, w)
 
 
 class FixedGrid:

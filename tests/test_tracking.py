@@ -56,14 +56,17 @@ def mu5():
 
 def test_tracked_grids_give_the_uniform_grids_events(mu5):
     """Measured: P̄max, P̄off, both jumps and the force after the jump-in agree to 1e-6; x̄oc
-    to 2.2e-5 (the grid before contact is 0.025 against the uniform grid's 0.0112); δ̄oc and
-    ā_c, on the flat force maximum, to 1.6e-3 and 7e-5."""
+    to 2.2e-5 (the grid before contact is 0.025 against the uniform grid's 0.0112); δ̄oc, on
+    the flat force maximum, to 1.1e-3. ā_c is the radius where the gap passes 1 ε inside an
+    adhered zone whose gaps stay within 0.02 ε of 1: landings on grids of other edge elements
+    (1, 4, 8 times longer) gave 1.94485, 1.94776 and 1.94715 with P̄max equal to 6e-7; here
+    1.1e-3 off."""
     uniform, tracked = (r.events.records() for r in mu5)
     for key in ("p_max", "p_off", "delta_jump_in", "p_jump_after", "delta_jump_out"):
         assert tracked[key] == pytest.approx(uniform[key], rel=1e-5), key
     assert tracked["x_oc"] == pytest.approx(uniform["x_oc"], rel=1e-4)
     assert tracked["delta_oc"] == pytest.approx(uniform["delta_oc"], rel=5e-3)
-    assert tracked["a_c"] == pytest.approx(uniform["a_c"], rel=1e-3)
+    assert tracked["a_c"] == pytest.approx(uniform["a_c"], rel=2e-3)
 
 
 def test_tracked_approach_force_follows_the_uniform_one(mu5):
