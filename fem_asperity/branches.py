@@ -24,12 +24,18 @@ from .paths import (COLUMNS, equilibrium_curve, fold_by_parabola, path_from_rows
 _DOWN, _UP = np.array([0.0, -1.0, 0.0]), np.array([0.0, 1.0, 0.0])
 #: Most jumps one path may make (ripple of a far too coarse mesh, or a landing that loops).
 MAX_JUMPS = 200
+#: A state moved to a new grid whose force then changes by more than this was at a fold of the
+#: new grid's curve: its landing is a jump (moves between grids change P̄ by ≤ 1.5e-5; at
+#: μ = 46.9 the jump-out happened at a regrid, P̄ −0.417 → −2e-4).
+REGRID_JUMP = 1e-3
 
 
 def _branch(grids, surface, w, delta, heading, settings, until, on_point):
-    """(stable Trace from (w, δ) on `surface`, fold, state past the fold, surface at the end):
-    `_piece`s of the branch, moved to a new grid (`grids.land`, see `tracking`) each time the
-    contact edge leaves the current one's band; on a fixed grid, one piece."""
+    """(stable Trace from (w, δ) on `surface`, fold, state past the fold, surface at the end,
+    landing): `_piece`s of the branch, moved to a new grid (`grids.land`, see `tracking`) each
+    time the contact edge leaves the current one's band; on a fixed grid, one piece. Where a
+    move lands elsewhere (REGRID_JUMP) the branch ends in a fold there, landing = (surface, w)
+    of the jump; else landing is None."""
     merged = Trace()
     while True:
         def done(tr):
@@ -39,13 +45,17 @@ def _branch(grids, surface, w, delta, heading, settings, until, on_point):
                                       partial(grids.admits, surface))
         if fold is not None or until(traced):
             merged.extend(traced)
-            return merged, fold, beyond, surface
-        w, delta, p_before = traced.states[-1], traced.delta[-1], traced.p[-1]
+            return merged, fold, beyond, surface, None
+        w, delta = traced.states[-1], traced.delta[-1]
+        before = {c: getattr(traced, c)[-1] for c in ("x", "p", "a_c", "area")}
         traced.drop_last()  # solved again on the next grid
         merged.extend(traced)
         surface, w, its = grids.land(surface, w, delta, tol=settings.tol)
         merged.newton_iterations += its
-        grids.largest_change = max(grids.largest_change, abs(surface.force(w, delta) - p_before))
+        change = abs(surface.force(w, delta) - before["p"])
+        if change > REGRID_JUMP:
+            return merged, (delta, before), None, surface, (surface, w)
+        grids.largest_change = max(grids.largest_change, change)
 
 
 def _piece(surface, w, delta, heading, settings, until, on_point, admissible=None):
@@ -78,12 +88,15 @@ def _piece(surface, w, delta, heading, settings, until, on_point, admissible=Non
     return traced, fold, beyond
 
 
-def _jump(grids, surface, fold, beyond, settings, counter):
+def _jump(grids, surface, fold, beyond, settings, counter, landed=None):
     """Land past `fold` downhill from the unstable state `beyond`, on the grid of the landing
-    (`grids.land`): (surface, w, Jump)."""
+    (`grids.land`), or take the (surface, w) `landed` already: (surface, w, Jump)."""
     delta, before = fold
-    surface, w, its = grids.land(surface, beyond, delta, tol=settings.tol)
-    counter.newton_iterations += its
+    if landed is None:
+        surface, w, its = grids.land(surface, beyond, delta, tol=settings.tol)
+        counter.newton_iterations += its
+    else:
+        surface, w = landed
     x, p = surface.centre_gap(w, delta), surface.force(w, delta)
     if abs(x - before["x"]) <= 1e-9 * (1.0 + abs(x)):
         raise ContinuationError(f"the jump at δ = {delta:.6g} landed back on its own branch")
@@ -125,8 +138,8 @@ def stable_paths(surface, settings, progress=None, *, grids=None):
     branches, starts, approach, jumps_in, heading = [], [], [], [], APPROACH
     while True:
         starts.append(surface)
-        branch, fold, beyond, surface = _branch(grids, surface, w, delta, heading, settings,
-                                                reached_end, report)
+        branch, fold, beyond, surface, landed = _branch(grids, surface, w, delta, heading,
+                                                        settings, reached_end, report)
         branches.append(branch)
         approach += [point_row(branch, i, len(jumps_in)) for i in range(len(branch.delta))]
         if fold is None:
@@ -134,7 +147,7 @@ def stable_paths(surface, settings, progress=None, *, grids=None):
         if len(jumps_in) >= MAX_JUMPS:
             raise ContinuationError(f"more than {MAX_JUMPS} jumps on approach")
         approach.append(dict(delta=fold[0], **fold[1], branch=len(jumps_in)))
-        surface, w, jump = _jump(grids, surface, fold, beyond, settings, traced)
+        surface, w, jump = _jump(grids, surface, fold, beyond, settings, traced, landed)
         jumps_in.append(jump)
         delta, heading = fold[0], _DOWN
     retraction, jumps_out, extra = _retract(grids, starts, settings, branches, traced, progress)
@@ -172,8 +185,8 @@ def _retract(grids, starts, settings, branches, counter, progress):
             return rows, jumps, extra
         surface, w, delta, skip = starts[j], branches[j].states[0], branches[j].delta[0], 1
         while True:
-            branch, fold, beyond, surface = _branch(grids, surface, w, delta, _UP, settings, far,
-                                                    report)
+            branch, fold, beyond, surface, landed = _branch(grids, surface, w, delta, _UP,
+                                                            settings, far, report)
             extra.append(branch)
             rows += [point_row(branch, i, len(jumps)) for i in range(skip, len(branch.delta))]
             if fold is None:
@@ -181,7 +194,7 @@ def _retract(grids, starts, settings, branches, counter, progress):
             if len(jumps) >= MAX_JUMPS:
                 raise ContinuationError(f"more than {MAX_JUMPS} jumps on retraction")
             rows.append(dict(delta=fold[0], **fold[1], branch=len(jumps)))
-            surface, w, jump = _jump(grids, surface, fold, beyond, settings, counter)
+            surface, w, jump = _jump(grids, surface, fold, beyond, settings, counter, landed)
             jumps.append(jump)
             delta, skip = fold[0], 0
             known = _approach_branch(branches, delta, jump.x_after,
