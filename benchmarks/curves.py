@@ -21,10 +21,10 @@ import time
 from dataclasses import replace
 from pathlib import Path
 
-from fem_asperity._io import write_atomic
-from fem_asperity.accuracy import METHODS, PRESETS, discretisation
-from fem_asperity.asperity import solve_discretised
-from fem_asperity.continuation import ContinuationError
+from fem_asperity.plumbing.errors import ContinuationError
+from fem_asperity.plumbing.files import write_atomic
+from fem_asperity.solver.presets import METHODS, PRESETS, discretisation
+from fem_asperity.solver.solve import solve_discretised
 
 KEYS = ("p_off", "delta_oc", "a_c", "x_oc")
 

@@ -2,10 +2,10 @@
 
 import sys
 
-from ._cli import Parser, ProgressBar, dump_json, print_table, run
-from .accuracy import METHODS, PRESETS
-from .laws import PAPER_LAWS
-from .scales import Scales, effective_modulus
+from .closed_forms.laws import PAPER_LAWS
+from .closed_forms.scales import Scales, effective_modulus
+from .plumbing.cli import Parser, ProgressBar, dump_json, print_table, run
+from .solver.presets import METHODS, PRESETS
 
 PROG = "python -m fem_asperity"
 EVENT_COLUMNS = ("mu", "p_max", "delta_oc", "delta_o_star", "a_c", "jump_in", "x_oc")
@@ -113,10 +113,10 @@ def _scales(args, parser):
 
 
 def _curve(args, parser):
-    from .asperity import solve_curve, solve_to_tolerance
-    from .continuation import ContinuationError
-    from .elastic import Solid
-    from .output import write_all
+    from .plumbing.errors import ContinuationError
+    from .solids.fe import Solid
+    from .solver.output import write_all
+    from .solver.solve import solve_curve, solve_to_tolerance
 
     if args.layer_thickness is None and (args.layer_modulus_ratio != 1.0 or args.layer_nu is not None):
         parser.error("curve: --layer-modulus-ratio and --layer-nu need --layer-thickness")
@@ -137,7 +137,7 @@ def _curve(args, parser):
         print(f"{PROG}: continuation failed: {exc}", file=sys.stderr)
         return 1
     bar.close()
-    if "ripple" in result.message or "NOT met" in result.message:
+    if result.status != "ok":
         print(f"warning: {result.message}", file=sys.stderr)
     if args.out:
         write_all(result, args.out)
@@ -153,8 +153,8 @@ def _curve(args, parser):
 
 
 def _onset(args, parser):
-    from .continuation import ContinuationError
-    from .onset import jump_in_onset
+    from .plumbing.errors import ContinuationError
+    from .studies.onset import jump_in_onset
 
     try:
         row = jump_in_onset(method=args.method, accuracy=args.accuracy,

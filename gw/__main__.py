@@ -4,10 +4,10 @@ import sys
 
 import numpy as np
 
-from fem_asperity._cli import Parser, ProgressBar, dump_json, print_table, run
-from fem_asperity.accuracy import PRESETS
-from fem_asperity.refit import stored_refit
-from fem_asperity.scales import Scales
+from fem_asperity.closed_forms.scales import Scales
+from fem_asperity.plumbing.cli import Parser, ProgressBar, dump_json, print_table, run
+from fem_asperity.solver.presets import PRESETS
+from fem_asperity.studies.refit import stored_refit
 
 from .integrate import separation_range, strength, totals
 from .laws import PaperLaw

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from fem_asperity._checks import in_range
+from fem_asperity.plumbing.checks import in_range
 
 from .surface import height_pdf
 

@@ -13,13 +13,13 @@ every real δ̄o (negative = the asperity presses into the half-space). Two kind
 import numpy as np
 from scipy.interpolate import PchipInterpolator
 
-from fem_asperity._checks import positive
-from fem_asperity.laws import PAPER_LAWS
-from fem_asperity.lj import bradley_force
+from fem_asperity.closed_forms.laws import PAPER_LAWS
+from fem_asperity.closed_forms.lj import bradley_force
+from fem_asperity.plumbing.checks import positive
 
 
 class PaperLaw:
-    """The closed-form laws of `fem_asperity.laws` at one μ (`constants`: the paper's by default,
+    """The closed-form laws of `fem_asperity.closed_forms.laws` at one μ (`constants`: the paper's by default,
     or refitted ones)."""
 
     def __init__(self, mu, constants=PAPER_LAWS, *, name="paper"):
@@ -31,7 +31,7 @@ class PaperLaw:
 
 
 class TabulatedLaw:
-    """P̄(δ̄o), Ā(δ̄o) read off an approach path (`fem_asperity.curve.Curve`) at Tabor parameter mu.
+    """P̄(δ̄o), Ā(δ̄o) read off an approach path (`fem_asperity.path.curve.Curve`) at Tabor parameter mu.
 
     Each branch of the path (between jumps) is interpolated by PCHIP in δ̄o; a jump is a
     breakpoint, as is δ̄o* (`delta_o_star`, where the area starts). Above the path's first δ̄o

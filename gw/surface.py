@@ -9,7 +9,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem_asperity._checks import InputError, in_range, positive
+from fem_asperity.plumbing.checks import in_range, positive
+from fem_asperity.plumbing.errors import InputError
 
 #: McCool's eq. 20 needs σRη above √(3.717e-4) = 0.019280 for a real ω.
 MCCOOL_MIN = float(np.sqrt(3.717e-4))

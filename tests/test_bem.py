@@ -6,9 +6,9 @@ from scipy.integrate import quad
 from scipy.special import ellipe
 
 from fem_asperity import InputError
-from fem_asperity.bem import BoussinesqSurface, radial_grid
-from fem_asperity.boussinesq import displacement_matrix, kernel, log_gauss
-from fem_asperity.lj import centre_deflection, traction
+from fem_asperity.closed_forms.lj import centre_deflection, traction
+from fem_asperity.solids.bem import BoussinesqSurface, radial_grid
+from fem_asperity.solids.boussinesq import displacement_matrix, kernel, log_gauss
 
 
 def _surface(h, r_fine=2.0, r_max=100.0):

@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 
 from fem_asperity import InputError
-from fem_asperity.accuracy import discretisation
-from fem_asperity.asperity import ESTIMATED, solve_curve, solve_discretised
-from fem_asperity.elastic import Solid
-from fem_asperity.onset import fold_margin
+from fem_asperity.solids.fe import Solid
+from fem_asperity.solver.presets import discretisation
+from fem_asperity.solver.solve import ESTIMATED, solve_curve, solve_discretised
+from fem_asperity.studies.onset import fold_margin
 
 
 @pytest.mark.parametrize("mu", [0.1, 0.5, 1.0, 3.0])
@@ -55,7 +55,7 @@ def test_fold_margin_changes_sign_between_069_and_070(method):
 
 def test_out_files_are_all_or_nothing(tmp_path, monkeypatch):
     """A failure in the last file (the figure) leaves the output folder as it was."""
-    from fem_asperity import output
+    from fem_asperity.solver import output
 
     result = solve_curve(0.3, method="bem", accuracy="draft", error_estimate=False)
     target = tmp_path / "out"
@@ -81,7 +81,7 @@ def test_out_files_are_all_or_nothing(tmp_path, monkeypatch):
 def test_tolerance_driven_solve_meets_its_tolerance():
     """Refined until P̄max and P̄off move by ≤ 1e-6; the answer is that close to a much finer
     BEM reference (h = 0.00625, turn 0.025: P̄off = −0.8353323349)."""
-    from fem_asperity.asperity import solve_to_tolerance
+    from fem_asperity.solver.solve import solve_to_tolerance
 
     result = solve_to_tolerance(1.0, 1e-6, method="bem")
     assert "met after" in result.message and result.accuracy == "tolerance 1e-06"
@@ -110,7 +110,7 @@ def test_stable_branches_give_the_paths_of_the_whole_curve():
 def test_energy_descent_lands_where_newton_on_the_traced_branch_does():
     """Both jumps of the whole curve at μ = 2: `land` from the first unstable point past each
     fold, at the fold's δ̄o, reaches the state that Newton from the traced stable branch found."""
-    from fem_asperity.landing import land
+    from fem_asperity.path.landing import land
 
     result = solve_discretised(2.0, discretisation(2.0, "draft", method="bem"),
                                unstable_branch=True)

@@ -178,8 +178,8 @@ def test_onset_json():
 
 def test_a_curve_the_solver_cannot_follow_is_one_line_exit_1(capsys):
     """`_cli.run` (all three command lines) reports a ContinuationError as one line, code 1."""
-    from fem_asperity._cli import run
-    from fem_asperity.continuation import ContinuationError
+    from fem_asperity.plumbing.cli import run
+    from fem_asperity.plumbing.errors import ContinuationError
 
     def main(argv):
         raise ContinuationError("no stable state at δ = 75.7754")

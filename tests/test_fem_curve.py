@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 
 from fem_asperity import InputError
-from fem_asperity.asperity import solve_curve
-from fem_asperity.elastic import Solid
-from fem_asperity.lj import bradley_force, centre_deflection
+from fem_asperity.closed_forms.lj import bradley_force, centre_deflection
+from fem_asperity.solids.fe import Solid
+from fem_asperity.solver.solve import solve_curve
 
 
 def wu_pull_off(mu):

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from fem_asperity import InputError
-from fem_asperity.elastic import HalfSpace, Solid, boussinesq_point_load
-from fem_asperity.mesh import graded_mesh
+from fem_asperity.solids.fe import HalfSpace, Solid, boussinesq_point_load
+from fem_asperity.solids.mesh import graded_mesh
 
 
 def _model(order=2, grading=0.5, layer=None, solid=Solid()):

@@ -9,9 +9,9 @@ import pytest
 from scipy.integrate import quad
 
 from fem_asperity import InputError
-from fem_asperity.curve import curve_from_columns
-from fem_asperity.laws import PAPER_LAWS
-from fem_asperity.lj import bradley_force
+from fem_asperity.closed_forms.laws import PAPER_LAWS
+from fem_asperity.closed_forms.lj import bradley_force
+from fem_asperity.path.curve import curve_from_columns
 from gw.integrate import WINDOW, strength, totals
 from gw.laws import PaperLaw, TabulatedLaw
 from gw.surface import MCCOOL_MIN, RoughSurface, height_pdf, omega_mccool, theta, xi

@@ -8,7 +8,7 @@ from scipy.integrate import quad
 from scipy.optimize import minimize_scalar
 
 from fem_asperity import InputError
-from fem_asperity.lj import (
+from fem_asperity.closed_forms.lj import (
     K_9_3,
     bradley_force,
     centre_deflection,

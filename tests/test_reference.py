@@ -7,7 +7,7 @@ import pytest
 from scipy.optimize import minimize_scalar
 
 from fem_asperity import InputError
-from fem_asperity import reference as ref
+from fem_asperity.closed_forms import reference as ref
 
 
 def test_hertz_hand_values():

@@ -2,8 +2,8 @@
 
 import pytest
 
-from fem_asperity.laws import PAPER_LAWS
-from fem_asperity.refit import refit, stored_refit
+from fem_asperity.closed_forms.laws import PAPER_LAWS
+from fem_asperity.studies.refit import refit, stored_refit
 
 
 @pytest.fixture(scope="module")

@@ -6,8 +6,14 @@ import warnings
 import numpy as np
 import pytest
 
-from fem_asperity import DerjaguinWarning, InputError, Scales, effective_modulus, tabor_parameter
-from fem_asperity.lj import centre_deflection
+from fem_asperity import (
+    DerjaguinWarning,
+    InputError,
+    Scales,
+    effective_modulus,
+    tabor_parameter,
+)
+from fem_asperity.closed_forms.lj import centre_deflection
 
 # Silicon-like sphere on a compliant film: hand values below use these.
 E, NU, DGAMMA, EPS, R = 100e9, 0.25, 0.1, 0.3e-9, 1e-6

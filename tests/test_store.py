@@ -1,6 +1,6 @@
 """The store of solved curves: solved once per solver revision, then read back."""
 
-import fem_asperity.store as store
+import fem_asperity.studies.store as store
 
 
 def test_a_changed_solver_solves_afresh(tmp_path, monkeypatch):
@@ -14,8 +14,8 @@ def test_a_changed_solver_solves_afresh(tmp_path, monkeypatch):
     monkeypatch.setattr(store, "solve_curve", counting_solve)
     first = store.stored_curve(0.2, accuracy="draft", cache=tmp_path)
     again = store.stored_curve(0.2, accuracy="draft", cache=tmp_path)
-    assert len(solved) == 1 and again[1] == first[1]
+    assert len(solved) == 1 and again.events == first.events
     monkeypatch.setattr(store, "solver_revision", lambda: "another")
     changed = store.stored_curve(0.2, accuracy="draft", cache=tmp_path)
-    assert len(solved) == 2 and changed[2] != first[2]
-    assert changed[1]["p_off"] == first[1]["p_off"]
+    assert len(solved) == 2 and changed.folder != first.folder
+    assert changed.events.p_off == first.events.p_off

@@ -3,12 +3,12 @@
 import numpy as np
 import pytest
 
-from fem_asperity.accuracy import discretisation
-from fem_asperity.asperity import elastic_surface, solve_discretised
-from fem_asperity.continuation import Linearisation
-from fem_asperity.elimination import relax_edge
-from fem_asperity.lj import scaled_traction_slope
-from fem_asperity.surface import LJSurface
+from fem_asperity.closed_forms.lj import scaled_traction_slope
+from fem_asperity.path.continuation import Linearisation
+from fem_asperity.path.elimination import relax_edge
+from fem_asperity.path.surface import LJSurface
+from fem_asperity.solver.presets import discretisation
+from fem_asperity.solver.solve import solve_discretised
 
 
 @pytest.fixture(scope="module")
@@ -20,7 +20,7 @@ def traced():
 
 @pytest.mark.parametrize("method", ["bem", "fem"])
 def test_tangent_from_the_spring_map_is_the_assembled_tangent(method):
-    surface = LJSurface(elastic_surface(discretisation(2.0, "draft", method=method)), 2.0)
+    surface = LJSurface(discretisation(2.0, "draft", method=method).elastic(), 2.0)
     rng = np.random.default_rng(0)
     w, delta = 0.1 * rng.random(surface.r_nodes.size), 1.5
     slope = surface.weights * scaled_traction_slope(surface.gap(w, delta))

@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 
 from fem_asperity import InputError
-from fem_asperity.accuracy import discretisation
-from fem_asperity.asperity import solve_discretised
-from fem_asperity.lj import scaled_traction_slope
-from fem_asperity.tracking import edge_grid, spring_ratio
+from fem_asperity.closed_forms.lj import scaled_traction_slope
+from fem_asperity.path.grids import edge_grid, spring_ratio
+from fem_asperity.solver.presets import discretisation
+from fem_asperity.solver.solve import solve_discretised
 
 
 def test_spring_ratio_limits():
@@ -95,7 +95,7 @@ def test_tracked_result_says_how_it_was_computed(mu5):
 def test_grids_tell_which_states_they_resolve():
     """The pre-contact grid resolves states without contact only; a surface built elsewhere
     resolves none."""
-    from fem_asperity.tracking import EdgeGrids
+    from fem_asperity.path.grids import EdgeGrids
 
     grids = EdgeGrids(5.0, h=0.01, band=0.07, h_inside=0.1, contact_h=0.05, contact_r=4.0,
                       r_max=100.0)
@@ -113,9 +113,9 @@ def test_grids_tell_which_states_they_resolve():
 def test_predictor_moves_the_crack_tip_front_along():
     """Two states whose gap profiles are one front translated by 0.05: the prediction one step
     on (fraction 1) is that front translated again, within the window, to interpolation error (`continuation._shift_front`)."""
-    from fem_asperity.bem import BoussinesqSurface, radial_grid
-    from fem_asperity.continuation import Trace, _shift_front
-    from fem_asperity.surface import LJSurface
+    from fem_asperity.path.continuation import Trace, _shift_front
+    from fem_asperity.path.surface import LJSurface
+    from fem_asperity.solids.bem import BoussinesqSurface, radial_grid
 
     surface = LJSurface(BoussinesqSurface(radial_grid(h=0.005, r_fine=2.0, r_max=5.0)), 10.0)
     r, delta = surface.r_nodes, 1.0

@@ -6,12 +6,12 @@ from dataclasses import asdict
 from pathlib import Path
 
 from fem_asperity import InputError
-from fem_asperity._checks import positive
-from fem_asperity.accuracy import PRESETS
-from fem_asperity._cli import Parser, dump_json, run
-from fem_asperity.laws import PAPER_LAWS
+from fem_asperity.closed_forms.laws import PAPER_LAWS
+from fem_asperity.plumbing.checks import positive
+from fem_asperity.plumbing.cli import Parser, dump_json, run
+from fem_asperity.plumbing.files import save_figure, write_atomic
+from fem_asperity.solver.presets import PRESETS
 
-from fem_asperity._io import save_figure, write_atomic
 from .closed_forms import closed_form_checks
 from .law_figure import law_table, plot_laws
 from .report import PENDING, render

@@ -8,8 +8,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from fem_asperity import lj, reference
-from fem_asperity.laws import PAPER_LAWS
+from fem_asperity.closed_forms import lj, reference
+from fem_asperity.closed_forms.laws import PAPER_LAWS
 
 
 @dataclass(frozen=True)

@@ -2,8 +2,8 @@
 
 import numpy as np
 
-from fem_asperity import reference
-from fem_asperity.laws import PAPER_LAWS
+from fem_asperity.closed_forms import reference
+from fem_asperity.closed_forms.laws import PAPER_LAWS
 
 #: Tabor parameters of the law table and figure: 0.01 to 100, 25 per decade.
 MU_GRID = np.logspace(-2, 2, 101)

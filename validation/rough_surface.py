@@ -9,8 +9,8 @@ from dataclasses import asdict
 
 import numpy as np
 
-from fem_asperity.laws import PAPER_LAWS
-from fem_asperity.refit import stored_refit
+from fem_asperity.closed_forms.laws import PAPER_LAWS
+from fem_asperity.studies.refit import stored_refit
 from gw.integrate import strength, totals
 from gw.laws import PaperLaw
 from gw.surface import RoughSurface
@@ -177,7 +177,7 @@ def verdicts(data, spread):
 
 
 #: Tabor parameters at which the paper's law is checked against the solved (BEM) law by default.
-#: From μ = 6 on the BEM's grids follow the contact edge (`fem_asperity.tracking`): μ = 10 takes
+#: From μ = 6 on the BEM's grids follow the contact edge (`fem_asperity.path.grids`): μ = 10 takes
 #: about 35 s to solve and store. μ = 46.9 (Fig. 9) does not work yet: its approach solves in
 #: 21 min, but the retraction's landing after the jump-out fails after about 55 min.
 COMPARISON_MU = (0.1, 0.3, 0.5, 0.7, 1.0, 2.0, 3.0, 5.0, 10.0)
@@ -224,7 +224,7 @@ def run(out, *, compare_mu=COMPARISON_MU, accuracy="default", refit_method="bem"
     The constants are refitted from `refit_method` ('bem' or 'fem') curves."""
     import json
 
-    from fem_asperity._io import save_figure, write_atomic
+    from fem_asperity.plumbing.files import save_figure, write_atomic
 
     from .rough_figures import plot, plot_comparison
 

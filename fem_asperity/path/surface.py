@@ -10,9 +10,10 @@ import numpy as np
 from scipy.linalg import cho_factor, cho_solve
 from scipy.sparse import csr_matrix
 
-from .lj import scaled_potential as potential
-from .lj import scaled_traction as traction
-from .lj import scaled_traction_slope as traction_slope
+from ..closed_forms.lj import scaled_potential as potential
+from ..closed_forms.lj import scaled_traction as traction
+from ..closed_forms.lj import scaled_traction_slope as traction_slope
+from ..solids.operator import ElasticSurface
 
 #: A Newton step never lets a gap fall below this fraction of its current value.
 GAP_KEEP = 0.2
@@ -67,20 +68,21 @@ TIP_GAP = 7.5 ** (1.0 / 6.0)
 
 
 class LJSurface:
-    """Residual, tangent and derived quantities of the surface problem at one μ."""
+    """Residual, tangent and derived quantities of the surface problem at one μ, on any
+    `ElasticSurface` (FE or boundary integral)."""
 
-    def __init__(self, half_space, mu, *, radius_ratio=None):
+    def __init__(self, elastic: ElasticSurface, mu, *, radius_ratio=None):
         self.mu = mu
         self.derjaguin = radius_ratio is None
         self.load_factor = mu**1.5
-        self.r_nodes = half_space.r_nodes
-        self.interp = half_space.interp
-        self.interp_t = half_space.interp.T.tocsr()
-        self.weights = half_space.weights
-        self.profile = derjaguin_profile(half_space.r_quad, radius_ratio)
-        self.node_profile = derjaguin_profile(half_space.r_nodes, radius_ratio)
-        factor = cho_factor(half_space.compliance)
-        self.stiffness = cho_solve(factor, np.eye(half_space.compliance.shape[0]))
+        self.r_nodes = elastic.r_nodes
+        self.interp = elastic.interp
+        self.interp_t = elastic.interp.T.tocsr()
+        self.weights = elastic.weights
+        self.profile = derjaguin_profile(elastic.r_quad, radius_ratio)
+        self.node_profile = derjaguin_profile(elastic.r_nodes, radius_ratio)
+        factor = cho_factor(elastic.compliance)
+        self.stiffness = cho_solve(factor, np.eye(elastic.compliance.shape[0]))
         self.stiffness = 0.5 * (self.stiffness + self.stiffness.T)
         self._stiffness32 = self.stiffness.astype(np.float32)
         self._spring_entries, self._spring_map = _spring_pattern(self.interp)

@@ -4,22 +4,13 @@ Field units: coordinates r, z in √(Rε); displacement in ε; σ_zz in Δγ/ε 
 so σ_zz ≈ −p̄ on the surface). `write_all` writes all files or none (a staging folder).
 """
 
-import json
 from pathlib import Path
 
 import numpy as np
 
-from ._io import atomic_path, save_figure, staged_folder, write_atomic
-from .lj import traction
-
-
-def write_curves(result, folder):
-    """approach.csv, retraction.csv, equilibrium.csv and result.json under `folder`."""
-    folder = Path(folder)
-    paths = [write_atomic(folder / f"{name}.csv", getattr(result, name).csv())
-             for name in ("approach", "retraction", "equilibrium")]
-    text = json.dumps(result.records(), indent=2, allow_nan=False)
-    return paths + [write_atomic(folder / "result.json", text + "\n")]
+from ..closed_forms.lj import traction
+from ..plumbing.files import atomic_path, save_figure, staged_folder
+from .result import write_curves
 
 
 def plot_curve(result, path):

@@ -17,12 +17,11 @@ import numpy as np
 from scipy.optimize import brentq
 from threadpoolctl import threadpool_limits
 
-from ._checks import InputError
-from .accuracy import discretisation
-from .asperity import PATH_BLAS_THREADS, elastic_surface
-from .continuation import trace
-from .curve import parabola_vertex
-from .surface import LJSurface
+from ..path.continuation import trace
+from ..path.curve import parabola_vertex
+from ..plumbing.errors import InputError
+from ..solver.presets import discretisation
+from ..solver.solve import PATH_BLAS_THREADS
 
 
 def fold_margin(mu, *, method="bem", accuracy="default"):
@@ -30,7 +29,7 @@ def fold_margin(mu, *, method="bem", accuracy="default"):
     disc = discretisation(mu, accuracy, method=method)
     settings = replace(disc.trace, turn=0.2 * disc.trace.turn)
     with threadpool_limits(PATH_BLAS_THREADS, user_api="blas"):
-        traced = trace(LJSurface(elastic_surface(disc), mu), settings)
+        traced = trace(disc.grids(mu).start, settings)
     slope = np.array(traced.tangents)[:, 1]
     o = np.column_stack([traced.x, traced.delta, traced.p])
     arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(o, axis=0), axis=1))])

@@ -6,27 +6,25 @@ the Boussinesq integral of the homogeneous half-space on a radial grid (`bem`), 
 truncation of the solid. Then, for both: LJ 9-3 traction on the surface as a nonlinear boundary
 form with its consistent tangent; pseudo-arc-length continuation of the whole equilibrium curve;
 exact extrema of P̄; approach and retraction under δ̄o control read off it, jumps included (see
-`paths`). The error estimate is the change of each event on a coarser discretisation
-(`accuracy.Discretisation.coarsened`)."""
+`path.branches`, `path.whole_curve`). The error estimate is the change of each event on a
+coarser discretisation (`coarsened()` of the `presets` discretisation)."""
 
 import time
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from ._checks import InputError, in_range, positive
-from .accuracy import H_INSIDE, discretisation
-from .bem import BoussinesqSurface, radial_grid
-from .continuation import ContinuationError
-from .curve import Curve, Events, read_events
-from .elastic import HalfSpace, Solid
-from .mesh import graded_mesh
-from .branches import stable_paths
-from .paths import whole_curve_paths
-from .surface import LJSurface
-from .tracking import EdgeGrids
+from ..path.branches import stable_paths
+from ..path.curve import read_events
+from ..path.grids import FixedGrid
+from ..path.whole_curve import whole_curve_paths
+from ..plumbing.checks import in_range, positive
+from ..plumbing.errors import ContinuationError, InputError
+from ..solids.fe import Solid
+from .presets import discretisation
+from .result import CurveResult, Model, worst_status
 
 #: BLAS threads while a curve is set up and traced. Its dense factorisations (n ≈ 100-3000) ran
 #: 2.7x slower with 2 OpenBLAS threads than with 1 on the 2-core development machine (μ = 5, BEM
@@ -39,105 +37,30 @@ ESTIMATED = ("p_max", "delta_oc", "a_c", "delta_o_star", "x_oc", "delta_jump_in"
              "p_off", "delta_jump_out")
 
 
-@dataclass
-class Model:
-    """The solved model behind a curve (kept for field output): half-space, surface, trace."""
-
-    half_space: HalfSpace | BoussinesqSurface
-    surface: LJSurface
-    trace: object
-
-
-@dataclass(frozen=True)
-class CurveResult:
-    """One approach + retraction at Tabor parameter `mu`, and how it was obtained.
-
-    equilibrium: the traced equilibrium curve: with `unstable_branch` the whole curve, else the
-        stable branches the paths visit, one after the other (`branch` numbers them).
-    approach, retraction: the paths under δ̄o control (jumps as consecutive points at equal δ̄o).
-    events: `Events` read off the paths. error_estimate: |event − event on the coarser mesh| per
-    key (None where not estimated). dofs, surface_nodes, points, newton_iterations, wall_s: cost.
-    folds: folds of δ̄o met: changes of stability along the whole curve, or jumps of the paths.
-    message: how many folds, and a warning when there are more than the two of one jump-in and
-    one jump-out (the sign of a surface mesh too coarse for μ).
-    """
-
-    mu: float
-    accuracy: str
-    solid: Solid
-    equilibrium: Curve
-    approach: Curve
-    retraction: Curve
-    events: Events
-    error_estimate: dict | None
-    dofs: int
-    surface_nodes: int
-    points: int
-    newton_iterations: int
-    wall_s: float
-    folds: int = 0
-    method: str = "fem"
-    message: str = ""
-    model: Model | None = field(default=None, repr=False, compare=False)
-
-    @property
-    def ripples(self):
-        """More folds than one jump-in and one jump-out: the sign of a surface mesh too coarse."""
-        return self.folds > 2
-
-    def records(self):
-        """JSON-ready dict: the command line's keys (dimensionless, tensile forces negative)."""
-        return {
-            "mu": self.mu,
-            "method": self.method,
-            "accuracy": self.accuracy,
-            **self.events.records(),
-            "error_estimate": self.error_estimate,
-            "dofs": self.dofs,
-            "surface_nodes": self.surface_nodes,
-            "points": self.points,
-            "newton_iterations": self.newton_iterations,
-            "wall_s": self.wall_s,
-            "message": self.message,
-        }
-
-
-def elastic_surface(disc, solid=Solid()):
-    """The elastic solid's surface operators for the discretisation's method."""
-    if disc.method == "bem":
-        if solid.layer_thickness is not None:
-            raise InputError("method 'bem' models a homogeneous half-space; use 'fem' for a layer")
-        return BoussinesqSurface(radial_grid(h=disc.h_surface, r_fine=disc.r_fine,
-                                             r_max=disc.size, growth=disc.grading))
-    mesh = graded_mesh(h_surface=disc.h_surface, r_fine=disc.r_fine, size=disc.size,
-                       grading=disc.grading, layer_thickness=solid.layer_thickness)
-    return HalfSpace(mesh, order=disc.order, solid=solid)
-
-
 def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, unstable_branch=False,
                       progress=None):
-    """One curve on the given `accuracy.Discretisation` (no error estimate, inputs unchecked
-    beyond the discretisation's own): for studies that set the resolution themselves."""
+    """One curve on the given discretisation (`presets.discretisation`; no error estimate, inputs
+    unchecked beyond the discretisation's own): for studies that set the resolution themselves."""
     start = time.perf_counter()
     with threadpool_limits(PATH_BLAS_THREADS, user_api="blas"):
-        if disc.band is not None:
-            if unstable_branch or solid.layer_thickness is not None:
-                raise InputError("grids that follow the contact edge (BEM at large mu) trace "
-                                 "stable branches of a homogeneous half-space only")
-            grids = EdgeGrids(mu, h=disc.h_surface, band=disc.band, h_inside=H_INSIDE,
-                              contact_h=disc.h_contact, contact_r=disc.r_fine, r_max=disc.size,
-                              growth=disc.grading, radius_ratio=radius_ratio)
-            surface, half_space = grids.start, None
-            solved = stable_paths(surface, disc.trace, progress, grids=grids)
+        grids = disc.grids(mu, solid=solid, radius_ratio=radius_ratio)
+        fixed = isinstance(grids, FixedGrid)
+        if unstable_branch and not fixed:
+            raise InputError("grids that follow the contact edge (BEM at large mu) trace "
+                             "stable branches only")
+        if unstable_branch:
+            solved = whole_curve_paths(grids.start, disc.trace, progress)
         else:
-            half_space = elastic_surface(disc, solid)
-            surface = LJSurface(half_space, mu, radius_ratio=radius_ratio)
-            solve = whole_curve_paths if unstable_branch else stable_paths
-            solved = solve(surface, disc.trace, progress)
+            solved = stable_paths(grids, disc.trace, progress)
         approach, retraction, jumps_in, jumps_out, curve, traced = solved
     folds = int(curve.branch.max()) if unstable_branch else len(jumps_in) + len(jumps_out)
-    nodes = surface.r_nodes.size if half_space else grids.largest_nodes
-    result = CurveResult(
+    message = f"{folds} folds of the equilibrium curve" + grids.summary()
+    status = "ok"
+    if folds > 2:
+        status = "ripples"
+        message += (" (more than one jump-in and one jump-out: probably ripple from a surface "
+                    "mesh too coarse for this mu; try a finer accuracy)")
+    return CurveResult(
         mu=mu,
         accuracy=disc.name,
         solid=solid,
@@ -146,24 +69,17 @@ def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, unstable_br
         retraction=retraction,
         events=read_events(approach, retraction, jumps_in, jumps_out),
         error_estimate=None,
-        dofs=half_space.dofs if half_space else nodes,
-        surface_nodes=nodes,
+        dofs=grids.dofs,
+        surface_nodes=grids.largest_nodes,
         points=len(curve),
         newton_iterations=traced.newton_iterations,
         wall_s=time.perf_counter() - start,
         folds=folds,
         method=disc.method,
-        model=Model(half_space, surface, traced) if half_space else None,
+        status=status,
+        message=message,
+        model=Model(grids.elastic, grids.start, traced) if fixed else None,
     )
-    message = f"{folds} folds of the equilibrium curve"
-    if half_space is None:
-        message += (f"; {grids.regrids} grids followed the contact edge (at most {nodes} nodes), "
-                    f"moving a state to a new grid changed P̄ by at most "
-                    f"{grids.largest_change:.1e}")
-    if result.ripples:
-        message += (" (more than one jump-in and one jump-out: probably ripple from a surface "
-                    "mesh too coarse for this mu; try a finer accuracy)")
-    return replace(result, message=message)
 
 
 def _difference(fine, coarse):
@@ -178,7 +94,7 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     """Approach and retraction of a rigid sphere on the half-space at Tabor parameter `mu`.
 
     method: 'fem' (finite elements, layers allowed) or 'bem' (boundary integral, homogeneous).
-    accuracy: 'draft', 'default' or 'fine' (see `accuracy.PRESETS`).
+    accuracy: 'draft', 'default' or 'fine' (see `presets.PRESETS`).
     solid: `Solid` (homogeneous by default; a layer with thickness in √(Rε)).
     radius_ratio: R/ε for the exact sphere profile instead of Derjaguin's parabola (None).
     p_end: the approach goes on until P̄ reaches this compressive force (2πRΔγ units).
@@ -208,14 +124,15 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
         result = solve_discretised(mu, disc, progress=progress, **options)
         try:
             coarse = coarse_job.result()
-            estimate, note = _difference(result, coarse), ""
+            estimate, note, status = _difference(result, coarse), "", result.status
             if coarse.ripples:
                 note = ("; the coarser solve of the error estimate ripples (more than two folds), "
                         "so the estimate is pessimistic")
         except ContinuationError as exc:
             estimate, note = None, (f"; no error estimate: the coarser discretisation failed "
                                     f"({exc}); try a finer accuracy")
-    return replace(result, error_estimate=estimate, message=result.message + note,
+            status = worst_status(result.status, "no_estimate")
+    return replace(result, error_estimate=estimate, status=status, message=result.message + note,
                    wall_s=time.perf_counter() - start)
 
 
@@ -248,8 +165,9 @@ def solve_to_tolerance(mu, tolerance, *, method="fem", solid=Solid(), radius_rat
         done = worst <= tolerance
         note = (f"; tolerance {tolerance:g} on P̄max, P̄off " + ("met" if done else "NOT met")
                 + f" after {k + 1} levels (relative change {worst:.2g}, h = {disc.h_surface:.4g})")
+        status = result.status if done else worst_status(result.status, "tolerance_not_met")
         result = replace(result, accuracy=f"tolerance {tolerance:g}", error_estimate=change,
-                         wall_s=wall + result.wall_s, message=result.message + note)
+                         wall_s=wall + result.wall_s, status=status, message=result.message + note)
         if done:
             break
         previous = result

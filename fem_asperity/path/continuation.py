@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.linalg import LinAlgError, cho_factor, cho_solve, lu_factor, lu_solve
 
+from ..plumbing.errors import ContinuationError
 from .elimination import relax_edge
 from .surface import gap_keeping_step
 
@@ -26,10 +27,6 @@ from .surface import gap_keeping_step
 REUSE, MOVED_REFINEMENTS, ACCEPT = 3e-3, 3, 1e-2
 #: Heading in (x̄o, δ̄o, P̄) of an approach from far away (gap and δ̄o decreasing).
 APPROACH = np.array([-1.0, -1.0, 0.0])
-
-
-class ContinuationError(RuntimeError):
-    """The continuation could not proceed (Newton failed at the smallest step)."""
 
 
 @dataclass(frozen=True)
@@ -317,7 +314,7 @@ def follow(surface, w, delta, heading, settings, *, until, stop_at_fold=False, o
 
     `on_point(trace)` is called after each accepted point. `admissible(w, δ)`: a converged point
     for which it is False is retried with a shorter step, like one that turned too far (the
-    surface resolves it only near where it was built, `tracking.EdgeGrids.admits`).
+    surface resolves it only near where it was built, `grids.EdgeGrids.admits`).
     Raises ContinuationError if the step
     falls below ds_min, the point budget runs out or the path runs off beyond 2 x_start.
     """

@@ -9,7 +9,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._checks import InputError, derjaguin, poisson, positive
+from ..plumbing.checks import derjaguin, poisson, positive
+from ..plumbing.errors import InputError
 
 
 def effective_modulus(*, E1, nu1, E2=None, nu2=None):

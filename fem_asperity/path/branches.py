@@ -6,19 +6,26 @@ p_end. The retraction walks back along the branches the approach visited and tra
 approach did not: from each landing onward in δ̄o, until that branch folds and the solid jumps
 off; where it lands on an approach branch it walks back along that. The unstable branches (LU
 factorisations and short steps, half the cost of the whole curve at μ = 5, most of an hour at
-μ = 10) are never traced; `paths` reads the same paths off the whole curve instead.
+μ = 10) are never traced; `whole_curve` reads the same paths off the whole curve instead.
 """
 
 from functools import partial
 
 import numpy as np
 
-from .continuation import (APPROACH, ContinuationError, Trace, approach_fraction, follow,
-                           start_state)
+from ..plumbing.errors import ContinuationError
+from .continuation import APPROACH, Trace, approach_fraction, follow, start_state
 from .curve import Jump, curve_from_columns
-from .tracking import FixedGrid
-from .paths import (COLUMNS, equilibrium_curve, fold_by_parabola, path_from_rows, point_row,
-                    refine_force_extrema, root_along)
+from .grids import Grids
+from .whole_curve import (
+    COLUMNS,
+    equilibrium_curve,
+    fold_by_parabola,
+    path_from_rows,
+    point_row,
+    refine_force_extrema,
+    root_along,
+)
 
 #: Headings in (x̄o, δ̄o, P̄) from a landing: a stable branch always moves in δ̄o.
 _DOWN, _UP = np.array([0.0, -1.0, 0.0]), np.array([0.0, 1.0, 0.0])
@@ -32,7 +39,7 @@ REGRID_JUMP = 1e-3
 
 def _branch(grids, surface, w, delta, heading, settings, until, on_point):
     """(stable Trace from (w, δ) on `surface`, fold, state past the fold, surface at the end,
-    landing): `_piece`s of the branch, moved to a new grid (`grids.land`, see `tracking`) each
+    landing): `_piece`s of the branch, moved to a new grid (`grids.land`, see `grids`) each
     time the contact edge leaves the current one's band; on a fixed grid, one piece. Where a
     move lands elsewhere (REGRID_JUMP) the branch ends in a fold there, landing = (surface, w)
     of the jump; else landing is None."""
@@ -55,7 +62,7 @@ def _branch(grids, surface, w, delta, heading, settings, until, on_point):
         change = abs(surface.force(w, delta) - before["p"])
         if change > REGRID_JUMP:
             return merged, (delta, before), None, surface, (surface, w)
-        grids.largest_change = max(grids.largest_change, change)
+        grids.record_move(change)
 
 
 def _piece(surface, w, delta, heading, settings, until, on_point, admissible=None):
@@ -63,8 +70,8 @@ def _piece(surface, w, delta, heading, settings, until, on_point, admissible=Non
     fold = (δ̄o, values before) at the branch's end, or None if `until` was met.
 
     The fold is where dδ̄o/ds = 0 between the last stable and the first unstable point
-    (`paths.root_along`); where that root is not clean (ripple), the parabola in arc length
-    through the last three points (`paths.fold_by_parabola`), or the start if the branch has
+    (`whole_curve.root_along`); where that root is not clean (ripple), the parabola in arc length
+    through the last three points (`whole_curve.fold_by_parabola`), or the start if the branch has
     no more."""
     traced = follow(surface, w, delta, heading, settings, until=until, stop_at_fold=True,
                     on_point=on_point, admissible=admissible)
@@ -114,20 +121,18 @@ def _approach_branch(branches, delta, x, jump):
     return None
 
 
-def stable_paths(surface, settings, progress=None, *, grids=None):
+def stable_paths(grids: Grids, settings, progress=None):
     """(approach, retraction, jumps in, jumps out, equilibrium, traced): the two paths under δ̄o
-    control (as `paths.walk`), the stable branches traced as one `Curve` (approach branches
+    control (as `whole_curve.walk`), the stable branches traced as one `Curve` (approach branches
     first, `branch` numbering them) and as one Trace (states, counters: landings included).
 
-    grids: a `tracking.EdgeGrids` whose grids follow the contact edge (`surface` is then its
-    pre-contact one, `grids.start`); None: `surface` throughout (the Trace's states are then all
-    on it).
+    grids: the surfaces to run on (`grids.Grids`): one `FixedGrid`, whose surface then holds
+    every state of the Trace, or `EdgeGrids` that follow the contact edge from `grids.start`.
 
     `progress(fraction)`: the approach runs to 0.85 (`approach_fraction`), the retraction on.
     Raises ContinuationError where a branch cannot be followed or a jump finds no landing.
     """
-    grids = grids or FixedGrid(surface)
-    traced = Trace()
+    traced, surface = Trace(), grids.start
     w, delta, traced.newton_iterations = start_state(surface, settings)
     report = ((lambda tr: progress(0.85 * approach_fraction(tr.x[-1], tr.p[-1], settings)))
               if progress else None)

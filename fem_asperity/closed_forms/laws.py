@@ -10,7 +10,8 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from ._checks import InputError, in_range, positive
+from ..plumbing.checks import in_range, positive
+from ..plumbing.errors import InputError
 from .lj import bradley_force, separation_from_gap
 
 

@@ -1,7 +1,7 @@
 """The boundary-integral half-space: the surface compliance from the Boussinesq kernel, no mesh.
 
-Same units and interface as `elastic.HalfSpace` (r in √(Rε), w in ε, E* = 1, the 2π dropped,
-surface integrals weighted by r), so `surface.LJSurface` and the continuation run on either.
+Same units and interface as `solids.fe.HalfSpace` (r in √(Rε), w in ε, E* = 1, the 2π dropped,
+surface integrals weighted by r), so `path.surface.LJSurface` and the continuation run on either.
 
 Galerkin form on a radial grid of linear elements: traction p and deflection w are both
 piecewise linear with nodal values; with M = ∫ φᵢ φⱼ r dr and B = ∫ φᵢ(r) u[φⱼ](r) r dr (u the
@@ -15,7 +15,7 @@ import numpy as np
 from scipy.linalg import cho_solve_banded, cholesky_banded
 from scipy.sparse import csr_matrix
 
-from ._checks import InputError
+from ..plumbing.errors import InputError
 from .boussinesq import displacement_matrix
 
 
@@ -35,7 +35,7 @@ def radial_grid(*, h, r_fine, r_max, growth=0.1):
 class BoussinesqSurface:
     """Surface operators of the homogeneous elastic half-space on the radial grid `nodes`.
 
-    Attributes as `elastic.HalfSpace`: r_nodes, r_quad (Gauss points, `quad_points` per element),
+    The `operator.ElasticSurface` interface: r_nodes, r_quad (Gauss points, `quad_points` per element),
     weights (Gauss weight × r), interp (nodal values → values at r_quad), compliance (dense C),
     dofs (unknowns: the surface nodes).
     """

@@ -7,8 +7,7 @@ import os
 import sys
 import warnings
 
-from ._checks import InputError
-from .continuation import ContinuationError
+from .errors import ContinuationError, InputError
 
 
 class Parser(argparse.ArgumentParser):

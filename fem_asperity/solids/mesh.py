@@ -11,7 +11,7 @@ z = −t is a mesh line and the elements above it form the subdomain 'layer'.
 import numpy as np
 from skfem import MeshTri
 
-from ._checks import in_range, positive
+from ..plumbing.checks import in_range, positive
 
 #: Refinement passes allowed; each halves the largest elements, so 60 covers any size/h ratio.
 _MAX_PASSES = 60

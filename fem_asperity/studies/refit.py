@@ -21,8 +21,8 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from ._io import write_atomic
-from .laws import AsperityLaws
+from ..closed_forms.laws import AsperityLaws
+from ..plumbing.files import write_atomic
 from .onset import jump_in_onset
 from .store import cache_dir, solver_revision, stored_curve
 
@@ -61,7 +61,8 @@ def _stats(residual):
 
 def refit(mus=REFIT_MU, *, method="bem", accuracy="default", progress=None):
     """Fit the eight constants to curves at `mus` (solved once, then stored)."""
-    events = [stored_curve(mu, method=method, accuracy=accuracy)[1] for mu in mus]
+    stored = [stored_curve(mu, method=method, accuracy=accuracy) for mu in mus]
+    events = [{"mu": s.mu, **s.events.records()} for s in stored]
     if progress:
         progress(0.8)
     mu = np.array([e["mu"] for e in events])

@@ -6,7 +6,7 @@ Gaps are in units of ε (h̄ = h/ε); forces in 2πRΔγ; deflections in ε, pos
 
 import numpy as np
 
-from ._checks import positive
+from ..plumbing.checks import positive
 
 #: ∫₀^∞(1+t²)⁻⁹dt / ∫₀^∞(1+t²)⁻³dt, the constant of eq. (4).
 K_9_3 = 2145.0 / 4096.0

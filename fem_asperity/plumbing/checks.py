@@ -4,18 +4,12 @@ import warnings
 
 import numpy as np
 
+from .errors import DerjaguinWarning, InputError
+
 #: Below this R/ε the Derjaguin approximation is refused outright.
 DERJAGUIN_REFUSE = 10.0
 #: Below this R/ε a warning is issued (the paper works with R/ε > 300).
 DERJAGUIN_WARN = 300.0
-
-
-class InputError(ValueError):
-    """An input outside its allowed range; the message names the parameter and the range."""
-
-
-class DerjaguinWarning(UserWarning):
-    """R/ε is small enough that the Derjaguin (μ-only) scaling loses accuracy."""
 
 
 def _scalar_or_array(arr):

@@ -9,7 +9,8 @@ from typing import NamedTuple
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from ._checks import InputError, in_range, positive
+from ..plumbing.checks import in_range, positive
+from ..plumbing.errors import InputError
 from .lj import MAX_TENSION
 
 #: Maugis' λ per Tabor μ when the Dugdale stress equals the LJ peak tension 16Δγ/(9√3 ε):

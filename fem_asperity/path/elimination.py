@@ -11,8 +11,8 @@ iterations (μ = 5, BEM `default`: 1673 → 940 Newton iterations, events unchan
 import numpy as np
 from scipy.linalg import LinAlgError, cho_factor, cho_solve
 
-from .lj import scaled_traction as traction
-from .lj import scaled_traction_slope as traction_slope
+from ..closed_forms.lj import scaled_traction as traction
+from ..closed_forms.lj import scaled_traction_slope as traction_slope
 from .surface import gap_keeping_step
 
 #: Nodes whose residual exceeds this fraction of the largest one are relaxed (with two

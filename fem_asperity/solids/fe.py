@@ -30,7 +30,8 @@ from skfem import (
     condense,
 )
 
-from ._checks import InputError, poisson, positive
+from ..plumbing.checks import poisson, positive
+from ..plumbing.errors import InputError
 
 ELEMENTS = {1: ElementTriP1, 2: ElementTriP2}
 #: SuperLU options for a symmetric positive definite matrix: symmetric ordering, no pivoting.
@@ -116,7 +117,8 @@ def _factor_surface_last(matrix, last):
 class HalfSpace:
     """Assembled elastic model on a mesh from `graded_mesh`, condensed onto the surface.
 
-    Attributes after construction:
+    The `operator.ElasticSurface` interface, and for field output mesh, basis,
+    displacement_field, stress_zz. Attributes after construction:
       r_nodes: radii of the surface unknowns (sorted), in √(Rε).
       r_quad, weights: surface quadrature points and weights (r included), in √(Rε) and √(Rε)².
       interp: sparse (n_quad × n_nodes) map from surface values w to w at the quadrature points.

@@ -9,8 +9,9 @@ next stable branch that the curve reaches at the same δ̄o (the landing, solved
 import numpy as np
 from scipy.optimize import brentq
 
-from .continuation import ContinuationError, Linearisation, correct, trace
-from .curve import Jump, parabola_vertex, curve_from_columns
+from ..plumbing.errors import ContinuationError
+from .continuation import Linearisation, correct, trace
+from .curve import Jump, curve_from_columns, parabola_vertex
 
 COLUMNS = ("delta", "x", "p", "area", "a_c")
 

@@ -19,14 +19,14 @@ changed there (a measure of the discretisation error).
 """
 
 import weakref
+from typing import Protocol
 
 import numpy as np
 
-from ._checks import InputError
-from .bem import BoussinesqSurface, radial_grid
-from .continuation import ContinuationError
+from ..closed_forms.lj import scaled_traction_slope
+from ..plumbing.errors import ContinuationError, InputError
+from ..solids.bem import BoussinesqSurface, radial_grid
 from .landing import land
-from .lj import scaled_traction_slope
 from .surface import TIP_GAP, LJSurface
 
 #: A landing on grids that follow the edge runs in stages of LANDING_STAGE iterations (then
@@ -156,6 +156,21 @@ class EdgeGrids:
         raise ContinuationError(f"no stable state on a grid that fits it at δ = {delta:.6g} "
                                 f"({MAX_STAGES} stages of landing)")
 
+    @property
+    def dofs(self):
+        """Unknowns of the largest grid (the surface nodes: a boundary integral)."""
+        return self.largest_nodes
+
+    def record_move(self, change):
+        """Keep the largest |ΔP̄| of a state moved to a new grid while on a branch."""
+        self.largest_change = max(self.largest_change, change)
+
+    def summary(self):
+        """How many grids followed the edge, their largest size, the largest move's |ΔP̄|."""
+        return (f"; {self.regrids} grids followed the contact edge (at most "
+                f"{self.largest_nodes} nodes), moving a state to a new grid changed P̄ by at "
+                f"most {self.largest_change:.1e}")
+
     def _moved(self, surface, w, delta):
         """(surface, w) of the state (w, δ̄o) moved to the grid of its edges (the pre-contact
         grid without contact), w interpolated linearly."""
@@ -168,10 +183,14 @@ class EdgeGrids:
 
 
 class FixedGrid:
-    """The one surface of a curve on a fixed mesh or grid (FE, uniform BEM): nothing moves."""
+    """The one surface of a curve on a fixed mesh or grid (FE, uniform BEM): nothing moves.
 
-    def __init__(self, surface):
-        self.start = surface
+    elastic: the `ElasticSurface` behind it (kept for field output); start: its `LJSurface`."""
+
+    def __init__(self, elastic, mu, *, radius_ratio=None):
+        self.elastic = elastic
+        self.start = LJSurface(elastic, mu, radius_ratio=radius_ratio)
+        self.dofs, self.largest_nodes = elastic.dofs, elastic.r_nodes.size
 
     def fits(self, surface, w, delta):
         return True
@@ -185,3 +204,38 @@ class FixedGrid:
         if not landed.converged:
             raise ContinuationError(f"no stable state found downhill at δ = {delta:.6g}")
         return surface, landed.w, landed.iterations
+
+    def record_move(self, change):
+        """Never called: a state never leaves a fixed grid."""
+
+    def summary(self):
+        """Nothing to add to a curve's message."""
+        return ""
+
+
+class Grids(Protocol):
+    """The surfaces a path runs on, for `branches.stable_paths`: one (`FixedGrid`) or many
+    built as the contact edge moves (`EdgeGrids`).
+
+    start: the `LJSurface` of the first state (far from contact). fits(surface, w, δ̄o): the
+    surface resolves the state as well as one built for it. admits(...): it still resolves it
+    (a continuation step beyond is retried shorter). land(surface, w, δ̄o, tol=...): (surface,
+    w, iterations) of the stable state downhill, on a surface that fits it. record_move(ΔP̄):
+    note the force change of a state moved to a new grid. summary(): a clause for the curve's
+    message. dofs, largest_nodes: the cost of the largest solid used.
+    """
+
+    start: LJSurface
+    dofs: int
+    largest_nodes: int
+
+    def fits(self, surface: LJSurface, w: np.ndarray, delta: float) -> bool: ...
+
+    def admits(self, surface: LJSurface, w: np.ndarray, delta: float) -> bool: ...
+
+    def land(self, surface: LJSurface, w: np.ndarray, delta: float, *,
+             tol: float) -> tuple[LJSurface, np.ndarray, int]: ...
+
+    def record_move(self, change: float) -> None: ...
+
+    def summary(self) -> str: ...

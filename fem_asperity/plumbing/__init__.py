@@ -1,0 +1,1 @@
+"""The package's boundary: exceptions, input checks, atomic files, command-line helpers."""

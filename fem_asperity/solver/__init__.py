@@ -1,0 +1,1 @@
+"""One curve: accuracy presets → discretisation → solve (with error estimate) → result files."""

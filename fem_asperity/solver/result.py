@@ -1,0 +1,99 @@
+"""What a solved curve is: `CurveResult` (curves, events, error estimate, cost, status) and its
+own files (`write_curves`: the CSV curves and result.json, the format the store reads back)."""
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..path.curve import Curve, Events
+from ..plumbing.files import write_atomic
+from ..solids.fe import Solid
+from ..solids.operator import ElasticSurface
+
+#: Values of `CurveResult.status`, from the best to the worst news.
+#: ok: no more folds than one jump-in and one jump-out, the estimate (if asked for) obtained and
+#: the tolerance (if one was set) met. no_estimate: the coarser solve of the error estimate failed.
+#: ripples: more folds than two, the sign of a surface mesh too coarse for μ. tolerance_not_met:
+#: `solve_to_tolerance` ran out of levels.
+STATUSES = ("ok", "no_estimate", "ripples", "tolerance_not_met")
+
+
+def worst_status(*statuses):
+    """The worst of the given `STATUSES`."""
+    return max(statuses, key=STATUSES.index)
+
+
+@dataclass
+class Model:
+    """The solved model behind a curve (kept for field output): elastic surface, LJ surface
+    problem, trace."""
+
+    half_space: ElasticSurface
+    surface: object
+    trace: object
+
+
+@dataclass(frozen=True)
+class CurveResult:
+    """One approach + retraction at Tabor parameter `mu`, and how it was obtained.
+
+    equilibrium: the traced equilibrium curve: with `unstable_branch` the whole curve, else the
+        stable branches the paths visit, one after the other (`branch` numbers them).
+    approach, retraction: the paths under δ̄o control (jumps as consecutive points at equal δ̄o).
+    events: `Events` read off the paths. error_estimate: |event − event on the coarser mesh| per
+    key (None where not estimated). dofs, surface_nodes, points, newton_iterations, wall_s: cost.
+    folds: folds of δ̄o met: changes of stability along the whole curve, or jumps of the paths.
+    status: one of `STATUSES` ('ok' unless something calls for a finer accuracy);
+    message: how it was obtained, and why the status is not 'ok' where it is not.
+    """
+
+    mu: float
+    accuracy: str
+    solid: Solid
+    equilibrium: Curve
+    approach: Curve
+    retraction: Curve
+    events: Events
+    error_estimate: dict | None
+    dofs: int
+    surface_nodes: int
+    points: int
+    newton_iterations: int
+    wall_s: float
+    folds: int = 0
+    method: str = "fem"
+    status: str = "ok"
+    message: str = ""
+    model: Model | None = field(default=None, repr=False, compare=False)
+
+    @property
+    def ripples(self):
+        """More folds than one jump-in and one jump-out: the sign of a surface mesh too coarse."""
+        return self.folds > 2
+
+    def records(self):
+        """JSON-ready dict: the command line's keys (dimensionless, tensile forces negative)."""
+        return {
+            "mu": self.mu,
+            "method": self.method,
+            "accuracy": self.accuracy,
+            **self.events.records(),
+            "error_estimate": self.error_estimate,
+            "dofs": self.dofs,
+            "surface_nodes": self.surface_nodes,
+            "points": self.points,
+            "newton_iterations": self.newton_iterations,
+            "wall_s": self.wall_s,
+            "status": self.status,
+            "message": self.message,
+        }
+
+
+def write_curves(result, folder):
+    """approach.csv, retraction.csv, equilibrium.csv and result.json under `folder` (result.json
+    last, so that a folder holding it is complete)."""
+    folder = Path(folder)
+    paths = [write_atomic(folder / f"{name}.csv", getattr(result, name).csv())
+             for name in ("approach", "retraction", "equilibrium")]
+    text = json.dumps(result.records(), indent=2, allow_nan=False)
+    return paths + [write_atomic(folder / "result.json", text + "\n")]

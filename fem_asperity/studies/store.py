@@ -1,0 +1,107 @@
+"""Solved single-asperity curves, computed on demand and stored for reuse.
+
+A curve at (μ, method, accuracy) is solved once with `solver.solve.solve_curve` (no error
+estimate) and its files (`approach.csv`, ..., `result.json`, `events.json`) are kept under
+$ADHESION_CACHE, else ~/.cache/adhesion-verification. `events.json` is written last, so a folder
+without it is solved again. Folders carry the solver's revision (`solver_revision`): a changed
+solver solves afresh instead of serving an older solver's curves.
+"""
+
+import ast
+import hashlib
+import importlib.util
+import json
+import os
+from dataclasses import asdict, dataclass
+from functools import cache
+from pathlib import Path
+
+import numpy as np
+
+from ..path.curve import Curve, Events, Jump, curve_from_columns
+from ..plumbing.files import write_atomic
+from ..solver.result import write_curves
+from ..solver.solve import solve_curve
+
+#: The modules whose code computes a stored curve, and the modules they import from the package:
+#: the solve itself (`solver.solve`, with the presets, paths, solids and closed forms below it)
+#: and this module, which reads and writes the stored format. The CLI, figures and field output
+#: are outside: editing them keeps the stored curves.
+REVISION_ROOTS = ("fem_asperity.solver.solve", __name__)
+
+
+@dataclass(frozen=True)
+class StoredCurve:
+    """A stored curve: its approach path (`Curve`), `Events`, and the folder of its files."""
+
+    mu: float
+    method: str
+    accuracy: str
+    approach: Curve
+    events: Events
+    folder: Path
+
+
+def cache_dir():
+    """Folder of stored curves."""
+    return Path(os.environ.get("ADHESION_CACHE", Path.home() / ".cache" / "adhesion-verification"))
+
+
+def _package_imports(module):
+    """Absolute names of the fem_asperity modules `module` imports from (the package imports
+    from modules only: `from ..path.curve import Curve`, never `from .. import path`)."""
+    tree = ast.parse(Path(importlib.util.find_spec(module).origin).read_bytes())
+    package = module.rsplit(".", 1)[0]
+    found = {importlib.util.resolve_name("." * node.level + (node.module or ""), package)
+             for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)}
+    return {name for name in found if name.split(".")[0] == "fem_asperity"}
+
+
+def revision_modules():
+    """The fem_asperity modules reachable by imports from REVISION_ROOTS, sorted."""
+    seen, todo = set(), list(REVISION_ROOTS)
+    while todo:
+        module = todo.pop()
+        if module not in seen:
+            seen.add(module)
+            todo.extend(_package_imports(module))
+    return sorted(seen)
+
+
+def _code_digest(module):
+    """The module's syntax tree without docstrings: comments, docstrings and layout do not count."""
+    tree = ast.parse(Path(importlib.util.find_spec(module).origin).read_bytes())
+    for node in ast.walk(tree):
+        body = getattr(node, "body", None)
+        if (isinstance(body, list) and body and isinstance(body[0], ast.Expr)
+                and isinstance(body[0].value, ast.Constant) and isinstance(body[0].value.value, str)):
+            node.body = body[1:] or [ast.Pass()]
+    return ast.dump(tree).encode()
+
+
+@cache
+def solver_revision():
+    """First 10 hex digits of the SHA-256 of the code of `revision_modules()` (syntax trees
+    without docstrings, so editing a comment or a docstring keeps the stored curves)."""
+    digest = hashlib.sha256()
+    for module in revision_modules():
+        digest.update(module.encode() + b"\0" + _code_digest(module))
+    return digest.hexdigest()[:10]
+
+
+def _events_from_dict(data):
+    jumps = {k: None if data[k] is None else Jump(**data[k]) for k in ("jump_in", "jump_out")}
+    return Events(**{**data, **jumps})
+
+
+def stored_curve(mu, *, method="bem", accuracy="default", cache=None, progress=None):
+    """`StoredCurve` at `mu`, solved now (and stored) if not stored yet."""
+    folder = Path(cache or cache_dir()) / f"{method}-{accuracy}-mu{mu:.6g}-{solver_revision()}"
+    if not (folder / "events.json").exists():
+        result = solve_curve(mu, method=method, accuracy=accuracy, error_estimate=False,
+                             progress=progress)
+        write_curves(result, folder)
+        write_atomic(folder / "events.json", json.dumps(asdict(result.events), indent=1) + "\n")
+    columns = np.loadtxt(folder / "approach.csv", delimiter=",", skiprows=1, ndmin=2)
+    events = _events_from_dict(json.loads((folder / "events.json").read_text()))
+    return StoredCurve(mu, method, accuracy, curve_from_columns(*columns.T), events, folder)
