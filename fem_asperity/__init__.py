@@ -1,14 +1,48 @@
-"""Single-asperity adhesive contact: inputs and scales, the LJ 9-3 law, reference solutions,
-the paper's closed-form laws, and the axisymmetric FE model (`fem_asperity.solver.solve.solve_curve`,
-imported on demand so that the closed forms load without scikit-fem).
+"""Single-asperity adhesive contact (Song & Komvopoulos): a rigid sphere on an elastic half-space
+through Lennard-Jones 9-3 surface springs.
+
+The closed forms load at once (numpy and scipy only): `Scales`, `tabor_parameter`,
+`effective_modulus`, the paper's laws `PAPER_LAWS` / `AsperityLaws`. The solvers load on first use
+(scikit-fem and the path machinery): `solve_curve`, `solve_to_tolerance`, `Solid`,
+`stored_curve`, `jump_in_onset`, `refit`. Subpackages, bottom up: `plumbing` (errors, checks,
+files, CLI helpers), `closed_forms`, `solids` (FE and boundary integral), `path` (the surface
+problem and path following), `solver` (presets, one curve, its files), `studies` (onset, store,
+refit); see docs/ARCHITECTURE.md.
 """
+
+from importlib import import_module
+from importlib.metadata import PackageNotFoundError, version
 
 from .closed_forms.laws import PAPER_LAWS, AsperityLaws, LawEvents
 from .closed_forms.scales import Scales, effective_modulus, tabor_parameter
-from .plumbing.errors import DerjaguinWarning, InputError
+from .plumbing.errors import ContinuationError, DerjaguinWarning, InputError
+
+try:
+    __version__ = version("adhesive-contact-verification")
+except PackageNotFoundError:  # run from a source tree that was never installed
+    __version__ = "unknown"
+
+#: Names loaded on first use, and the module each comes from.
+_LAZY = {
+    "solve_curve": "solver.solve",
+    "solve_to_tolerance": "solver.solve",
+    "CurveResult": "solver.result",
+    "Solid": "solids.fe",
+    "stored_curve": "studies.store",
+    "jump_in_onset": "studies.onset",
+    "refit": "studies.refit",
+}
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        return getattr(import_module(f".{_LAZY[name]}", __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 __all__ = [
     "AsperityLaws",
+    "ContinuationError",
     "DerjaguinWarning",
     "InputError",
     "LawEvents",
@@ -16,4 +50,5 @@ __all__ = [
     "Scales",
     "effective_modulus",
     "tabor_parameter",
+    *_LAZY,
 ]

@@ -1,5 +1,22 @@
-"""Greenwood-Williamson rough-surface integration (eqs. 20-28) of any asperity law.
+"""Greenwood-Williamson rough surface (Song & Komvopoulos eqs. 20-28) fed by any asperity law.
 
-Not implemented yet: it is a later stage of the roadmap. It will consume
-`fem_asperity.closed_forms.laws.AsperityLaws` (the paper's constants or refitted ones) or tabulated FE curves.
+`RoughSurface` (ζ = σ/ε, ω, or from σ, R, η, ε); laws: `PaperLaw` (the paper's or refitted
+constants), `TabulatedLaw` (a solved approach path), `solved_law` (a stored BEM/FE curve);
+integrals: `totals` (F̄, S̄ at separations d̃), `strength` (F̄max). Units: see the README.
 """
+
+from .integrate import strength, totals
+from .laws import PaperLaw, TabulatedLaw
+from .surface import RoughSurface, omega_mccool
+
+
+def __getattr__(name):
+    if name == "solved_law":  # loads the solvers (scikit-fem): only when a solved law is asked for
+        from .tables import solved_law
+
+        return solved_law
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+__all__ = ["PaperLaw", "RoughSurface", "TabulatedLaw", "omega_mccool", "solved_law", "strength",
+           "totals"]
