@@ -1,38 +1,85 @@
 """Benchmark: cost of the GW strength of adhesion with the paper's law (issue 5's targets).
 
-One F̄max (μ = 1, ζ = 6.67, ω = 1), best of 20 repeats, and a full Fig. 11 sweep (41 μ in
-[0.01, 100] × σ = 0.5, 1, 2 nm at ε = 0.3 nm), best of 3.
+What is measured: the wall time of `gw.integrate.strength` (F̄max of a Greenwood-Williamson
+surface with `PaperLaw`) for one F̄max at μ = 1, ζ = 6.67, ω = 1, and for a full Fig. 11 sweep
+(41 μ log-spaced in [0.01, 100] × σ = 0.5, 1, 2 nm at ε = 0.3 nm); the best and the median of
+repeated runs (the best is the cost without interference from other jobs).
 
-    python benchmarks/gw_strength.py
+    python benchmarks/gw_strength.py             # → benchmarks/results/gw_strength.{md,json}
+    python benchmarks/gw_strength.py --quick     # → benchmarks/results/gw_strength-quick.*
+    python benchmarks/gw_strength.py --out DIR
+
+Progress goes to stderr.
 """
 
-import platform
+import argparse
+import statistics
+import sys
 import time
 
 import numpy as np
+from provenance import add_output_options, provenance, write_results
 
+from fem_asperity.plumbing.cli import ProgressBar
 from gw.integrate import strength
 from gw.laws import PaperLaw
 from gw.surface import RoughSurface
 
+#: The single F̄max: the paper's example surface (σ = 2 nm at ε = 0.3 nm, so ζ = 6.67) at μ = 1.
+ONE_MU, ONE_ZETA = 1.0, 6.67
+#: Fig. 11: μ from 0.01 to 100, 41 points (10 per decade), for σ = 0.5, 1, 2 nm at ε = 0.3 nm.
+SWEEP_MU_RANGE, SWEEP_POINTS = (0.01, 100.0), 41
+SWEEP_SIGMA_NM, EPSILON_NM = (0.5, 1.0, 2.0), 0.3
+#: Repeats (one F̄max, sweep): enough for a stable best time; a single F̄max takes milliseconds.
+REPEATS = (20, 3)
+#: --quick: a few repeats and 5 μ per σ (a smoke check, not a measurement).
+QUICK_REPEATS, QUICK_SWEEP_POINTS = (3, 1), 5
 
-def best(fn, repeats):
+
+def timed(fn, repeats, bar):
+    """Best and median wall time of `repeats` calls of `fn` (s), reporting to `bar`."""
     times = []
-    for _ in range(repeats):
+    for k in range(repeats):
         start = time.perf_counter()
         fn()
         times.append(time.perf_counter() - start)
-    return min(times)
+        bar((k + 1) / repeats)
+    bar.close()
+    return min(times), statistics.median(times)
+
+
+def sweep(points):
+    """The Fig. 11 F̄max: `points` μ per σ."""
+    mus = np.logspace(*np.log10(SWEEP_MU_RANGE), points)
+    return [strength(PaperLaw(mu), RoughSurface(s / EPSILON_NM))
+            for s in SWEEP_SIGMA_NM for mu in mus]
 
 
 def main():
-    one = best(lambda: strength(PaperLaw(1.0), RoughSurface(6.67)), 20)
-    mus = np.logspace(-2, 2, 41)
-    sweep = best(lambda: [strength(PaperLaw(mu), RoughSurface(s / 0.3))
-                          for s in (0.5, 1.0, 2.0) for mu in mus], 3)
-    print(f"GW strength benchmark ({platform.machine()}, Python {platform.python_version()})")
-    print(f"one F_max (mu = 1, zeta = 6.67): {one * 1e3:.2f} ms")
-    print(f"Fig. 11 sweep (123 F_max): {sweep:.2f} s")
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    add_output_options(parser)
+    args = parser.parse_args()
+    prov = provenance()
+    repeats_one, repeats_sweep = QUICK_REPEATS if args.quick else REPEATS
+    points = QUICK_SWEEP_POINTS if args.quick else SWEEP_POINTS
+    cases = [
+        (f"one F_max (mu = {ONE_MU:g}, zeta = {ONE_ZETA:g}, omega = 1)", 1, repeats_one,
+         lambda: strength(PaperLaw(ONE_MU), RoughSurface(ONE_ZETA))),
+        (f"Fig. 11 sweep ({points} mu x {len(SWEEP_SIGMA_NM)} sigma)",
+         points * len(SWEEP_SIGMA_NM), repeats_sweep, lambda: sweep(points)),
+    ]
+    rows = []
+    for case, evaluations, repeats, fn in cases:
+        best, median = timed(fn, repeats, ProgressBar(case))
+        rows.append({"case": case, "evaluations": evaluations, "repeats": repeats,
+                     "best_s": best, "median_s": median})
+    lines = ["| case | F_max evaluations | repeats | best s | median s | best ms per F_max |",
+             "|---|---|---|---|---|---|"]
+    lines += [f"| {r['case']} | {r['evaluations']} | {r['repeats']} | {r['best_s']:.4g} | "
+              f"{r['median_s']:.4g} | {1e3 * r['best_s'] / r['evaluations']:.3g} |" for r in rows]
+    paths = write_results("gw_strength", "GW strength benchmark: cost of F̄max (paper's law)",
+                          prov, lines, {"rows": rows}, out=args.out, quick=args.quick)
+    print("wrote " + ", ".join(map(str, paths)), file=sys.stderr)
 
 
 if __name__ == "__main__":
