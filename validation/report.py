@@ -1,29 +1,82 @@
 """The verification report: closed-form checks now, and what awaits the FE and GW stages."""
 
+import os
 import platform
+import subprocess
 from datetime import datetime, timezone
+from pathlib import Path
+
+import numpy
+import scipy
+
+import fem_asperity
 
 #: Items of the paper not yet judged, with the roadmap stage that will judge them.
+FE_SWEEP = "FE sweep over mu (verification stage)"
 PENDING = (
-    ("Fig. 3 / eq. 6: a_c at maximum adhesion vs mu", "FE sweep over mu (verification stage)"),
-    ("Fig. 4 / eq. 7: delta_oc vs mu (no jump-in)", "FE sweep over mu (verification stage)"),
-    ("Fig. 5 / eq. 9: force vs separation, mu = 0.091-0.425", "FE sweep over mu (verification stage)"),
-    ("Fig. 6 (caption lost) / eqs. 12-13: jump-in gap and separation", "FE sweep over mu (verification stage)"),
-    ("Fig. 7 / eqs. 16-19: Hertz-like force and area after contact", "FE sweep over mu (verification stage)"),
-    ("eqs. 15 -> 2: the force lands on P_off at jump-in", "FE sweep over mu (verification stage)"),
+    ("Fig. 3 / eq. 6: a_c at maximum adhesion vs mu", FE_SWEEP),
+    ("Fig. 4 / eq. 7: delta_oc vs mu (no jump-in)", FE_SWEEP),
+    ("Fig. 5 / eq. 9: force vs separation, mu = 0.091-0.425", FE_SWEEP),
+    ("Fig. 6 (caption lost) / eqs. 12-13: jump-in gap and separation", FE_SWEEP),
+    ("Fig. 7 / eqs. 16-19: Hertz-like force and area after contact", FE_SWEEP),
+    ("eqs. 15 -> 2: the force lands on P_off at jump-in", FE_SWEEP),
     ("refit of the eight constants against the FE itself (here: against the BEM, which agrees "
-     "with the FE within its error estimate)", "FE sweep over mu (verification stage)"),
+     "with the FE within its error estimate)", FE_SWEEP),
 )
+#: The package's folder: its git checkout, if any, names the commit in the report.
+HERE = Path(__file__).resolve().parent
+
+
+def _git(*args):
+    """Output of a git command run in the package's folder; None outside a checkout."""
+    try:
+        done = subprocess.run(["git", *args], cwd=HERE, capture_output=True, text=True,
+                              timeout=10, check=True)
+    except (OSError, subprocess.SubprocessError):
+        return None
+    return done.stdout.strip()
+
+
+def git_commit():
+    """Short hash of HEAD ("unknown" outside a git checkout), marked when tracked files differ."""
+    head = _git("rev-parse", "--short", "HEAD")
+    if not head:
+        return "unknown"
+    dirty = _git("status", "--porcelain", "--untracked-files=no")
+    return head + (" + uncommitted changes" if dirty else "")
+
+
+def processor():
+    """The processor's model name where Linux tells it, else what `platform` knows."""
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8") as cpuinfo:
+            models = [line.split(":", 1)[1].strip() for line in cpuinfo
+                      if line.startswith("model name")]
+    except OSError:
+        models = []
+    name = models[0] if models else platform.processor()
+    return ", ".join(dict.fromkeys(n for n in (name, platform.machine()) if n))
+
+
+def machine():
+    """Processor, core count and the versions the numbers depend on, in one phrase."""
+    return (f"{processor()}, {os.cpu_count()} cores, Python {platform.python_version()}, "
+            f"numpy {numpy.__version__}, scipy {scipy.__version__}")
+
+
+def provenance(command):
+    """The report's first line: how to regenerate it, and from which code, when and where."""
+    now = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    return (f"Regenerate with `{command}`. Package version {fem_asperity.__version__}, "
+            f"commit {git_commit()}, {now}, on {machine()}.")
 
 
 def render(checks, files, command, rough=""):
     """The report as Markdown text."""
-    now = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     lines = [
-        "# Verification report: Song & Komvopoulos, adhesive rough-surface contact",
+        provenance(command),
         "",
-        f"Generated {now} by `{command}` on {platform.node()} "
-        f"({platform.machine()}, Python {platform.python_version()}).",
+        "# Verification report: Song & Komvopoulos, adhesive rough-surface contact",
         "",
         "## Closed-form checks (no FE)",
         "",
