@@ -11,16 +11,11 @@ refit); see docs/ARCHITECTURE.md.
 """
 
 from importlib import import_module
-from importlib.metadata import PackageNotFoundError, version
 
 from .closed_forms.laws import PAPER_LAWS, AsperityLaws, LawEvents
 from .closed_forms.scales import Scales, effective_modulus, tabor_parameter
 from .plumbing.errors import ContinuationError, DerjaguinWarning, InputError
-
-try:
-    __version__ = version("adhesive-contact-verification")
-except PackageNotFoundError:  # run from a source tree that was never installed
-    __version__ = "unknown"
+from .plumbing.version import __version__ as __version__
 
 #: Names loaded on first use, and the module each comes from.
 _LAZY = {

@@ -1,4 +1,8 @@
-"""Command line of fem_asperity: `python -m fem_asperity laws|scales ...` (see --help)."""
+"""Single asperity: `python -m fem_asperity laws|scales|curve|onset` (each with --help).
+
+laws: the paper's closed-form events; scales: E*, the Tabor parameter and the natural scales
+from SI inputs; curve: approach and retraction solved by FE or boundary integral; onset: the
+smallest mu with a jump-in."""
 
 import sys
 
@@ -31,7 +35,8 @@ def build_parser():
     laws.add_argument("--E-star", dest="E_star", type=float,
                       help="effective modulus [Pa] (with --dgamma, --eps, --R instead of --mu)")
     _physical_arguments(laws)
-    laws.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    laws.add_argument("--json", action="store_true",
+                      help="print a JSON list (one object per mu) instead of a table")
 
     scales = commands.add_parser("scales", help="E*, Tabor parameter and natural scales")
     scales.add_argument("--E1", type=float, required=True, help="modulus of body 1 [Pa]")
@@ -89,7 +94,7 @@ def _laws(args, parser):
         mus = args.mu
     rows = PAPER_LAWS.events(mus).records()
     if args.json:
-        dump_json(rows[0] if len(rows) == 1 else rows)
+        dump_json(rows)  # a list, one object per mu, whatever their number
     else:
         print(LAWS_LEGEND)
         print_table(rows, EVENT_COLUMNS)

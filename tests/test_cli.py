@@ -7,6 +7,8 @@ import sys
 
 import pytest
 
+from fem_asperity import __version__
+
 
 def cli(*args, cwd=None, env=None):
     return subprocess.run([sys.executable, "-m", *args], capture_output=True, text=True, cwd=cwd,
@@ -16,7 +18,7 @@ def cli(*args, cwd=None, env=None):
 def test_laws_json_has_exactly_the_documented_keys():
     done = cli("fem_asperity", "laws", "--mu", "0.3", "--json")
     assert done.returncode == 0, done.stderr
-    events = json.loads(done.stdout)
+    (events,) = json.loads(done.stdout)  # a list whatever the number of mu
     assert set(events) == {"mu", "p_max", "delta_oc", "delta_o_star", "a_c", "jump_in", "x_oc"}
     assert events["mu"] == 0.3 and events["jump_in"] is False and events["x_oc"] is None
     assert events["p_max"] < 0
@@ -35,7 +37,17 @@ def test_laws_from_physical_inputs_match_mu():
     done = cli("fem_asperity", "laws", "--E-star", "1e9", "--dgamma", "0.05", "--eps", "3e-10",
                "--R", "1e-6", "--json")
     mu = (1e-6 * 0.05**2 / (1e9**2 * 3e-10**3)) ** (1 / 3)
-    assert json.loads(done.stdout)["mu"] == pytest.approx(mu)
+    assert json.loads(done.stdout)[0]["mu"] == pytest.approx(mu)
+
+
+@pytest.mark.parametrize("package", ["fem_asperity", "gw", "validation"])
+def test_every_command_has_a_version_and_names_its_subcommands(package):
+    done = cli(package, "--version")
+    assert done.returncode == 0 and done.stdout.split()[-1] == __version__
+    shown = cli(package, "--help").stdout
+    commands = {"fem_asperity": ("laws", "scales", "curve", "onset"), "gw": ("fmax", "curve"),
+                "validation": ("all", "rough-surface")}[package]
+    assert all(c in shown for c in commands)
 
 
 @pytest.mark.parametrize("args", [
@@ -58,6 +70,7 @@ def test_scales_json():
     assert row["force"] == pytest.approx(2 * 3.141592653589793 * 1e-6 * 0.05)
 
 
+@pytest.mark.slow
 def test_validation_all_writes_its_files(tmp_path):
     out = tmp_path / "out"
     done = cli("validation", "all", "--out", str(out), "--json", "--compare-mu", "1",
@@ -116,6 +129,7 @@ CURVE_KEYS = {"mu", "method", "accuracy", "p_max", "delta_oc", "delta_o_star", "
               "error_estimate", "dofs", "newton_iterations", "wall_s"}
 
 
+@pytest.mark.slow
 def test_curve_json_files_and_progress(tmp_path):
     out = tmp_path / "curve"
     done = cli("fem_asperity", "curve", "--mu", "1.5", "--accuracy", "draft", "--json",
