@@ -1,6 +1,7 @@
 """The paper's closed-form asperity events over μ, tabulated and drawn beside JKR, DMT and Maugis-Dugdale."""
 
 import numpy as np
+from matplotlib.figure import Figure
 
 from fem_asperity.closed_forms import reference
 from fem_asperity.closed_forms.laws import PAPER_LAWS
@@ -20,18 +21,14 @@ def law_table(mu=MU_GRID, laws=PAPER_LAWS):
 
 def plot_laws(rows, laws=PAPER_LAWS):
     """A 2x2 figure of P̄max, ā_c, δ̄oc/δ̄o* and x̄oc against μ; returns the matplotlib Figure."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     col = {k: np.array([np.nan if r[k] is None else r[k] for r in rows], float) for k in rows[0]}
     jkr_a_c = reference.jkr_compressive_radius(mu=col["mu"])
     gap = np.searchsorted(col["mu"], laws.mu_jump)  # NaN row: no line drawn across the regimes
     col = {k: np.insert(v, gap, np.nan) for k, v in col.items()}
     jkr_a_c = np.insert(jkr_a_c, gap, np.nan)
     mu = col["mu"]
-    fig, ax = plt.subplots(2, 2, figsize=(10, 7.5), sharex=True)
+    fig = Figure(figsize=(10, 7.5), layout="tight")
+    ax = fig.subplots(2, 2, sharex=True)
     (a, b), (c, d) = ax
 
     a.plot(mu, col["p_max"], label="eq. 2 (Wu, LJ fit)")
@@ -61,5 +58,4 @@ def plot_laws(rows, laws=PAPER_LAWS):
     for axis in (c, d):
         axis.set_xlabel(r"Tabor parameter $\mu$")
     fig.suptitle("Paper's closed-form single-asperity laws (red line: jump-in from mu = 0.5)")
-    fig.tight_layout()
     return fig

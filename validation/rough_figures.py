@@ -1,23 +1,18 @@
 """Figures of the rough-surface stage: Figs. 9-13 with the ξ collapse, and paper vs solved law."""
 
 import numpy as np
+from matplotlib.figure import Figure
 
 from gw.integrate import totals
 from gw.laws import PaperLaw
 from gw.surface import RoughSurface
 from gw.tables import solved_law
 
-from .rough_surface import EPS_NM
-
 
 def plot(data, spread):
     """Figs. 9-13 and the ξ collapse as one 3×3 figure; returns the matplotlib Figure."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(3, 3, figsize=(15, 12))
+    fig = Figure(figsize=(15, 12), layout="tight")
+    ax = fig.subplots(3, 3)
     d = data["fig9"]["d"]
     for mu, c in data["fig9"]["curves"].items():
         ax[0, 0].plot(d, c["F"], label=f"μ = {mu}")
@@ -45,21 +40,17 @@ def plot(data, spread):
         axis.grid(alpha=0.3)
         if axis.get_legend_handles_labels()[0]:
             axis.legend(fontsize=7)
-    fig.suptitle(f"Paper's laws on a GW surface (ε = {EPS_NM} nm, ω = 1)")
-    fig.tight_layout()
+    fig.suptitle(f"Paper's laws on a GW surface (ε = {data['eps_nm']} nm, ω = {data['omega']})")
     return fig
 
 
-def plot_comparison(mus, *, method="bem", accuracy="default", sigma=2.0):
-    """F̄ and S̄ vs d̃ with the paper law (dashed) and the solved law (solid) at each μ."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.5))
+def plot_comparison(mus, *, eps_nm, method="bem", accuracy="default", sigma=2.0):
+    """F̄ and S̄ vs d̃ with the paper law (dashed) and the solved law (solid) at each μ, on a
+    GW surface of ζ = `sigma` / `eps_nm` (both in nm), ω = 1."""
+    fig = Figure(figsize=(12, 4.5), layout="tight")
+    a, b = fig.subplots(1, 2)
     d = np.linspace(0.0, 8.0, 161)
-    surface = RoughSurface(sigma / EPS_NM)
+    surface = RoughSurface(sigma / eps_nm)
     lowest = 0.0
     for k, mu in enumerate(mus):
         color = f"C{k}"
@@ -75,5 +66,4 @@ def plot_comparison(mus, *, method="bem", accuracy="default", sigma=2.0):
     a.legend(fontsize=7, ncol=2)
     for axis in (a, b):
         axis.grid(alpha=0.3)
-    fig.tight_layout()
     return fig

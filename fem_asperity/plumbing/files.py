@@ -56,12 +56,9 @@ def write_atomic(path, data):
 
 
 def save_figure(fig, path, dpi=150):
-    """Save a matplotlib figure atomically as PNG, then close it."""
+    """Save a matplotlib `Figure` atomically as PNG."""
     from io import BytesIO
-
-    import matplotlib.pyplot as plt
 
     buffer = BytesIO()
     fig.savefig(buffer, format="png", dpi=dpi, bbox_inches="tight")
-    plt.close(fig)
     return write_atomic(path, buffer.getvalue())

@@ -15,12 +15,10 @@ from .result import write_curves
 
 def plot_curve(result, path):
     """Two panels, P̄ and ā_c vs δ̄o: equilibrium curve (unstable dashed), approach, retraction."""
-    import matplotlib
+    from matplotlib.figure import Figure
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4), constrained_layout=True)
+    fig = Figure(figsize=(10, 4), layout="constrained")
+    axes = fig.subplots(1, 2)
     eq = result.equilibrium
     for ax, column, label in zip(axes, ("p", "a_c"), ("P̄ = P/(2πRΔγ)", "ā_c = a_c/√(εR)")):
         values = getattr(eq, column)
