@@ -12,7 +12,7 @@ from fem_asperity.solver.solve import ESTIMATED, solve_curve, solve_discretised
 from fem_asperity.studies.onset import fold_margin
 
 
-@pytest.mark.parametrize("mu", [0.1, 0.5, 1.0, 3.0])
+@pytest.mark.parametrize("mu", [0.1, 0.5, 1.0, pytest.param(3.0, marks=pytest.mark.slow)])
 def test_bem_agrees_with_fem_within_the_fem_error_estimate(mu):
     """Every event of the FE at `default` lies within its own error estimate of the BEM at
     `fine` (the BEM's `default` is itself up to 7e-5 off in x̄oc at μ = 3).

@@ -41,6 +41,7 @@ def test_pull_off_matches_wu(mu):
     assert curve(mu).events.p_off == pytest.approx(wu_pull_off(mu), rel=0.02)
 
 
+@pytest.mark.slow
 def test_pull_off_converges_under_refinement():
     values = [curve(1.0, accuracy=a).events.p_off for a in ("draft", "default", "fine")]
     assert abs(values[2] - values[1]) < abs(values[1] - values[0])
@@ -56,6 +57,7 @@ def test_no_jump_at_small_mu_and_paths_coincide():
     assert result.events.p_off == pytest.approx(result.events.p_max, rel=1e-12)
 
 
+@pytest.mark.slow
 def test_jump_in_and_hysteresis_at_mu_2():
     result = curve(2.0)
     ev = result.events

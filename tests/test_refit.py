@@ -14,6 +14,7 @@ def fitted(tmp_path_factory):
         yield refit((0.1, 0.2, 0.3, 0.4, 1.0, 1.5, 2.0), accuracy="draft"), cache
 
 
+@pytest.mark.slow
 def test_refit_is_close_to_the_paper_where_the_paper_is_right(fitted):
     found, _ = fitted
     laws = found.laws
@@ -25,6 +26,7 @@ def test_refit_is_close_to_the_paper_where_the_paper_is_right(fitted):
     assert found.mu == (0.1, 0.2, 0.3, 0.4, 1.0, 1.5, 2.0)
 
 
+@pytest.mark.slow
 def test_stored_refit_round_trips(fitted, tmp_path, monkeypatch):
     monkeypatch.setenv("ADHESION_CACHE", str(fitted[1]))
     first = stored_refit(accuracy="draft", cache=tmp_path)  # computes (curves already stored)

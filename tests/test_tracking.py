@@ -54,6 +54,7 @@ def mu5():
     return solve_discretised(5.0, uniform), solve_discretised(5.0, tracked)
 
 
+@pytest.mark.slow
 def test_tracked_grids_give_the_uniform_grids_events(mu5):
     """Measured: P̄max, P̄off, both jumps and the force after the jump-in agree to 1e-6; x̄oc
     to 2.2e-5 (the grid before contact is 0.025 against the uniform grid's 0.0112); δ̄oc, on
@@ -69,6 +70,7 @@ def test_tracked_grids_give_the_uniform_grids_events(mu5):
     assert tracked["a_c"] == pytest.approx(uniform["a_c"], rel=2e-3)
 
 
+@pytest.mark.slow
 def test_tracked_approach_force_follows_the_uniform_one(mu5):
     """P̄(δ̄o) of the approach after the jump-in, interpolated at the tracked samples."""
     uniform, tracked = (r.approach for r in mu5)
@@ -81,6 +83,7 @@ def test_tracked_approach_force_follows_the_uniform_one(mu5):
     assert np.max(np.abs(tracked.p[inside] - expected)) <= 2e-3
 
 
+@pytest.mark.slow
 def test_tracked_result_says_how_it_was_computed(mu5):
     uniform, tracked = mu5
     assert "grids followed the contact edge" in tracked.message
