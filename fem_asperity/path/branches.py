@@ -45,9 +45,7 @@ def _branch(grids, surface, w, delta, heading, settings, until, on_point):
     of the jump; else landing is None."""
     merged = Trace()
     while True:
-        def done(tr):
-            return until(tr) or not grids.fits(surface, tr.states[-1], tr.delta[-1])
-
+        done = partial(_done_or_off_grid, until, grids, surface)
         traced, fold, beyond = _piece(surface, w, delta, heading, settings, done, on_point,
                                       partial(grids.admits, surface))
         if fold is not None or until(traced):
@@ -63,6 +61,11 @@ def _branch(grids, surface, w, delta, heading, settings, until, on_point):
         if change > REGRID_JUMP:
             return merged, (delta, before), None, surface, (surface, w)
         grids.record_move(change)
+
+
+def _done_or_off_grid(until, grids, surface, tr):
+    """`until(tr)`, or the last point of `tr` is no longer resolved by `surface`."""
+    return until(tr) or not grids.fits(surface, tr.states[-1], tr.delta[-1])
 
 
 def _piece(surface, w, delta, heading, settings, until, on_point, admissible=None):

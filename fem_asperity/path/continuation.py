@@ -1,4 +1,5 @@
-"""Pseudo-arc-length continuation of the surface problem: the whole equilibrium curve, both branches.
+"""Pseudo-arc-length continuation of the surface problem: the whole equilibrium curve, both
+branches.
 
 The curve is traced in the space of three observables, the centre gap x̄o = δ − w(0), the sphere
 position δ̄o and the force P̄: each new point satisfies t·(o − o_k) = Δs, with o = (x̄o, δ̄o, P̄),
@@ -19,12 +20,31 @@ from .elimination import relax_edge
 from .surface import gap_keeping_step
 
 #: A Newton iteration reuses the last one's factorisation once that one's increment was ≤ REUSE
-#: relative to the state (the matrix then differs little), refining each solve against the
-#: current matrix up to MOVED_REFINEMENTS times; if the last correction is still > ACCEPT of the
-#: step it factorises afresh. Measured (BEM μ = 2): for a state moved by 1e-3 everywhere each
-#: refinement gains about 100x; by 1e-2 it diverges. μ = 5, BEM `default`: 964 → 638
-#: factorisations (REUSE 1e-3: 687, 1e-2: 631), events unchanged to 2e-8.
+#: relative to the state, refining each solve against the current matrix up to MOVED_REFINEMENTS
+#: times; if the last correction is still > ACCEPT of the step it factorises afresh. Chosen as
+#: the largest reuse whose refinements still converge (a state moved by 1e-3 gains about 100x a
+#: refinement, by 1e-2 it diverges) with the events unchanged to 2e-8 (BEM μ = 2, 5);
+#: test_surface_solver pins the refined solve.
 REUSE, MOVED_REFINEMENTS, ACCEPT = 3e-3, 3, 1e-2
+#: Newton's line search: a step is accepted once the merit (relative residual + constraint)
+#: falls by ARMIJO × its fraction (the usual sufficient decrease), else halved, at most
+#: MAX_HALVINGS times (2^-20 of a step is below any useful move).
+ARMIJO, MAX_HALVINGS = 1e-4, 20
+#: An iteration that keeps more than SLOW_PROGRESS of the merit counts as slow (`patience`).
+SLOW_PROGRESS = 0.9
+#: The border of a Cholesky-eliminated bordered matrix is degenerate (LU instead) below this
+#: relative size: double-precision cancellation of its terms, single-precision factor aside.
+DEGENERATE_BORDER = 1e-12
+#: Step-length control of `follow`, in the manner of scipy's solve_ivp: the first step FIRST_STEP;
+#: after an accepted point the step is scaled by SAFETY/ratio (ratio: the largest of the
+#: changes of P̄, ā_c and the turn relative to their limits, at least MIN_RATIO), at most
+#: MAX_FACTOR; a rejected point scales it by SAFETY/ratio, at least MIN_FACTOR. A step Newton
+#: failed on is halved (NEWTON_FAILURE_FACTOR) and caps the next ones at FAILED_CAP of itself,
+#: the cap relaxing by CAP_RELAXATION per accepted point (so a step that just failed is not
+#: tried again at once). A point the grid does not admit counts as INADMISSIBLE_RATIO (shorter).
+FIRST_STEP, SAFETY, MIN_RATIO, MAX_FACTOR, MIN_FACTOR = 0.1, 0.8, 1e-3, 2.0, 0.2
+NEWTON_FAILURE_FACTOR, FAILED_CAP, CAP_RELAXATION = 0.5, 0.7, 1.5
+INADMISSIBLE_RATIO = 2.0
 #: Heading in (x̄o, δ̄o, P̄) of an approach from far away (gap and δ̄o decreasing).
 APPROACH = np.array([-1.0, -1.0, 0.0])
 
@@ -144,7 +164,8 @@ class Linearisation:
         if self._cho is not None:
             self._border, self._b = border[:n], self._cho_solve(g_delta)
             self._denominator = border[n] - self._border @ self._b
-            if abs(self._denominator) > 1e-12 * (abs(border[n]) + abs(self._border) @ abs(self._b)):
+            size = abs(border[n]) + abs(self._border) @ abs(self._b)
+            if abs(self._denominator) > DEGENERATE_BORDER * size:
                 return
         matrix = np.empty((n + 1, n + 1), dtype=np.float32, order="F")  # LU in place
         matrix[:n, :n], matrix[:n, n], matrix[n] = surface.tangent_matrix(slope), g_delta, border
@@ -238,19 +259,21 @@ def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10
         if scale is None:
             scale = 1.0 + np.max(np.abs(surface.stiffness @ w))
         merit = np.linalg.norm(g) / scale + abs(c)
-        for _ in range(20):
+        for _ in range(MAX_HALVINGS):
             w_try, d_try = w + alpha * dw, delta + alpha * dd
             g_try = surface.residual(w_try, d_try)
             c_try = direction @ (_observables(surface, w_try, d_try) - anchor) - ds
             merit_try = np.linalg.norm(g_try) / scale + abs(c_try)
-            if merit_try <= (1.0 - 1e-4 * alpha) * merit:
+            if merit_try <= (1.0 - ARMIJO * alpha) * merit:
                 break
             alpha *= 0.5
         w, delta = w_try, d_try
         increment = alpha * max(np.max(np.abs(dw)), abs(dd))
-        if increment <= np.sqrt(tol) * (1.0 + np.max(np.abs(w))) and np.max(np.abs(g_try)) <= tol * scale:
+        converged = (increment <= np.sqrt(tol) * (1.0 + np.max(np.abs(w)))
+                     and np.max(np.abs(g_try)) <= tol * scale)
+        if converged:
             return w, delta, iteration, linear
-        slow = slow + 1 if merit_try > 0.9 * merit else 0
+        slow = slow + 1 if merit_try > SLOW_PROGRESS * merit else 0
         if patience is not None and slow >= patience:
             return None
     return None
@@ -325,7 +348,7 @@ def follow(surface, w, delta, heading, settings, *, until, stop_at_fold=False, o
     tangent = linear.tangent()
     result.append(surface, w, delta, linear.stable, surface.force(w, delta),
                   surface.contact(w, delta), tangent[2])
-    ds, ds_cap = 0.1, np.inf  # ds_cap: 0.7 × the last step Newton failed on, relaxed 50% per point
+    ds, ds_cap = FIRST_STEP, np.inf
     while not (result.stable[-1] and until(result)):
         if stop_at_fold and not result.stable[-1]:
             break
@@ -359,21 +382,21 @@ def follow(surface, w, delta, heading, settings, *, until, stop_at_fold=False, o
             turn = np.arccos(np.clip(tangent_new[2] @ t, -1.0, 1.0))
             force, contact = surface.force(w_new, d_new), surface.contact(w_new, d_new)
             dp, da = abs(force - result.p[-1]), abs(contact[1] - result.a_c[-1])
-            ratio = max(dp / s.dp, da / s.da, turn / s.turn, 1e-3)
+            ratio = max(dp / s.dp, da / s.da, turn / s.turn, MIN_RATIO)
             if admissible is not None and not admissible(w_new, d_new):
-                ratio = max(ratio, 2.0)
+                ratio = max(ratio, INADMISSIBLE_RATIO)
             if ratio <= 1.0 or ds <= s.ds_min:
                 w, delta, row, tangent = w_new, d_new, t, tangent_new
                 result.append(surface, w, delta, linear.stable, force, contact, tangent[2])
                 if on_point is not None:
                     on_point(result)
                 effort = min(1.0, s.target_newton / its)
-                ds_cap *= 1.5
-                ds = min(ds * min(2.0, 0.8 / ratio) * effort, s.ds_max, ds_cap)
+                ds_cap *= CAP_RELAXATION
+                ds = min(ds * min(MAX_FACTOR, SAFETY / ratio) * effort, s.ds_max, ds_cap)
                 continue
-            ds_next = ds * max(0.2, 0.8 / ratio)
+            ds_next = ds * max(MIN_FACTOR, SAFETY / ratio)
         else:
-            ds_next, ds_cap = 0.5 * ds, 0.7 * ds
+            ds_next, ds_cap = NEWTON_FAILURE_FACTOR * ds, FAILED_CAP * ds
         result.rejected_steps += 1
         if ds <= s.ds_min:
             raise ContinuationError(f"Newton failed at the smallest step near δ = {delta:.6g}")

@@ -3,23 +3,39 @@
 Past a fold of δ̄o no equilibrium is near; the solid snaps to a distant stable one. Starting from
 a state beyond the energy barrier (a point of the unstable branch next to the fold), Newton on the
 energy E(w; δ) (`LJSurface.energy`, whose gradient is the residual) at fixed δ finds it: where the
-tangent is indefinite it is shifted by s·diag(S) until a Cholesky factorisation succeeds (Levenberg),
-and a backtracking line search keeps every gap above a fraction of itself and never lets E rise.
+tangent is indefinite it is shifted by s·diag(S) until a Cholesky factorisation succeeds
+(Levenberg), and a backtracking line search keeps every gap above a fraction of itself and never
+lets E rise.
 So the unstable branch between the folds need not be traced.
 """
 
+from functools import partial
 from typing import NamedTuple
 
 import numpy as np
 from scipy.linalg import LinAlgError, cho_solve
 
-from .continuation import cholesky_in_place
+from .continuation import ARMIJO, cholesky_in_place
 from .surface import gap_keeping_step
+
+#: Levenberg shift of an indefinite tangent: raised SHIFT_RAISE times until Cholesky succeeds,
+#: from at least SHIFT_FLOOR (relative to the elastic diagonal); the next iteration starts from
+#: SHIFT_AFTER_SHORT × the last shift after a shortened step, SHIFT_AFTER_FULL × after a full one
+#: (the trust-region rule of thumb: shrink the shift where the model was trusted).
+SHIFT_RAISE, SHIFT_FLOOR, SHIFT_AFTER_SHORT, SHIFT_AFTER_FULL = 4.0, 1e-6, 2.0, 0.25
+#: Inverse iterations for the most negative curvature direction, and the largest gap change of
+#: that step (ε): a fraction of the LJ well's width, so the line search starts near the well.
+CURVATURE_ITERATIONS, CURVATURE_STEP = 4, 0.5
+#: Iterations of a landing beyond one per surface node (a snapping contact edge moves by about
+#: one or two nodes per iteration): BASE_ITERATIONS + nodes.
+BASE_ITERATIONS = 300
+#: Halvings of the energy line search (2^-30 of a step is below rounding of the energy).
+MAX_HALVINGS = 30
 
 
 def _shifted_factor(jac, weight, shift, floor, unshifted_first):
     """(Cholesky factor of jac + s·diag(weight), s) for s = 0 if `unshifted_first` and that
-    factorisation succeeds, else s raised 4x from max(shift, floor) until it does."""
+    factorisation succeeds, else s raised SHIFT_RAISE times from max(shift, floor) until it does."""
     diagonal = np.arange(jac.shape[0])
     if unshifted_first:
         try:
@@ -33,12 +49,12 @@ def _shifted_factor(jac, weight, shift, floor, unshifted_first):
         try:
             return cholesky_in_place(matrix), shift
         except LinAlgError:
-            shift = max(4.0 * shift, floor)
+            shift = max(SHIFT_RAISE * shift, floor)
 
 
-def _negative_curvature(surface, slope, solve, step, g, iterations=4):
+def _negative_curvature(surface, slope, solve, step, g, iterations=CURVATURE_ITERATIONS):
     """A step along the tangent's most negative curvature direction v, downhill (g·v ≤ 0), scaled
-    so that no gap changes by more than 0.5 ε (the line search shortens it); zero if the
+    so that no gap changes by more than CURVATURE_STEP (the line search shortens it); zero if the
     curvature found is not negative. v comes from inverse iteration with the shifted factor,
     started from the shifted Newton step. Without it the descent from a point next to a fold,
     where g is tiny, crept (FE μ = 3, coarse: 300 iterations, the energy falling 1e-10 each)."""
@@ -50,7 +66,12 @@ def _negative_curvature(surface, slope, solve, step, g, iterations=4):
         return np.zeros_like(step)
     if g @ v > 0.0:
         v = -v
-    return 0.5 * v / np.max(np.abs(surface.interp @ v))
+    return CURVATURE_STEP * v / np.max(np.abs(surface.interp @ v))
+
+
+def _solve_single(factor, rhs):
+    """Solve with a single-precision Cholesky factor, the result in double precision."""
+    return cho_solve(factor, rhs.astype(np.float32), check_finite=False).astype(float)
 
 
 class Landing(NamedTuple):
@@ -66,20 +87,19 @@ def land(surface, w, delta, *, tol=1e-9, max_iterations=None):
     """Stable equilibrium at fixed `delta` reached downhill in energy from the state `w`.
 
     tol: as `continuation.correct` (residual ≤ tol relative, last increment ≤ √tol relative).
-    max_iterations: default 300 + the number of surface nodes, as a snapping contact edge moves
-    by about one or two nodes per iteration (μ = 5, BEM `default`: 165 nodes in 100).
+    max_iterations: default BASE_ITERATIONS + the number of surface nodes.
     Returns a `Landing`: with `converged`, w has a positive definite tangent; without, w is the
     last iterate (lower in energy than the start) after `max_iterations`.
     """
     if max_iterations is None:
-        max_iterations = 300 + w.size
+        max_iterations = BASE_ITERATIONS + w.size
     w = w.copy()
     scale = 1.0 + np.max(np.abs(surface.stiffness @ w))
     # The shift is relative to the elastic diagonal: with axisymmetric weights the surface
     # stiffness spans many decades (large at large r), and a shift relative to its mean held
     # the descent near a fold for 300 iterations (FE, domain size 1e7).
     weight = np.diag(surface.stiffness).astype(np.float32)
-    start, floor = 0.0, 1e-6  # start: where the raise of the next shift begins
+    start = 0.0  # where the raise of the next shift begins
     # The unshifted factorisation is tried only after an unshifted or a full step: after a
     # shortened shifted step it failed 35 times in 40 (μ = 5, BEM `default`).
     unshifted_first = True
@@ -87,10 +107,9 @@ def land(surface, w, delta, *, tol=1e-9, max_iterations=None):
         g = surface.residual(w, delta)
         slope = surface.sensitivities(w, delta)[2]
         jac = surface.tangent_matrix(slope)
-        factor, shift = _shifted_factor(jac, weight, start, floor, unshifted_first)
+        factor, shift = _shifted_factor(jac, weight, start, SHIFT_FLOOR, unshifted_first)
 
-        def solve(rhs):
-            return cho_solve(factor, rhs.astype(np.float32), check_finite=False).astype(float)
+        solve = partial(_solve_single, factor)
 
         step = solve(-g)
         step += solve(-g - surface.tangent_product(slope, step) - shift * weight * step)
@@ -101,9 +120,9 @@ def land(surface, w, delta, *, tol=1e-9, max_iterations=None):
             return Landing(w + step, iteration, True)
         alpha = gap_keeping_step(surface.gap(w, delta), -(surface.interp @ step))
         energy, descent = surface.energy(w, delta), float(g @ step)
-        for _ in range(30):
+        for _ in range(MAX_HALVINGS):
             w_try = w + alpha * step
-            if surface.energy(w_try, delta) <= energy + 1e-4 * alpha * descent:
+            if surface.energy(w_try, delta) <= energy + ARMIJO * alpha * descent:
                 break
             if shift == 0.0 and (np.linalg.norm(surface.residual(w_try, delta))
                                  < np.linalg.norm(g)):
@@ -112,5 +131,5 @@ def land(surface, w, delta, *, tol=1e-9, max_iterations=None):
         w = w_try
         unshifted_first = shift == 0.0 or alpha == 1.0
         if shift > 0.0:
-            start = shift * (2.0 if alpha < 1.0 else 0.25)
+            start = shift * (SHIFT_AFTER_SHORT if alpha < 1.0 else SHIFT_AFTER_FULL)
     return Landing(w, max_iterations, False)
