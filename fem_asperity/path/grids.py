@@ -19,7 +19,7 @@ changed there (a measure of the discretisation error).
 """
 
 import weakref
-from typing import Protocol
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 
@@ -213,6 +213,7 @@ class FixedGrid:
         return ""
 
 
+@runtime_checkable
 class Grids(Protocol):
     """The surfaces a path runs on, for `branches.stable_paths`: one (`FixedGrid`) or many
     built as the contact edge moves (`EdgeGrids`).
