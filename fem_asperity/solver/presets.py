@@ -2,8 +2,8 @@
 
 The surface element size follows the cohesive zone at the contact edge, whose width shrinks like
 μ^(−3/2) √(Rε); the finely meshed strip covers the JKR contact radius at the deepest load. At
-large μ the FE's quadratic elements need nodes about 0.7 times as far apart as the boundary-
-integral method's linear ones to keep the force curve free of ripple (measured at μ = 5).
+large μ the FE's quadratic elements need nodes closer together than the boundary-integral
+method's linear ones to keep the force curve free of ripple (H_COHESIVE against H_COHESIVE_BEM).
 """
 
 from dataclasses import dataclass, replace
@@ -18,66 +18,59 @@ from ..solids.bem import BoussinesqSurface, radial_grid
 from ..solids.fe import HalfSpace, Solid
 from ..solids.mesh import graded_mesh
 
-#: Surface element size relative to the `default` preset, and the continuation's turn limit.
+#: Surface element size relative to the `default` preset, and the continuation's turn limit; the
+#: three converge in turn: test_fem_curve.py::test_pull_off_converges_under_refinement (slow).
 PRESETS = {
     "draft": (2.0, 0.2),
     "default": (1.0, 0.1),
     "fine": (0.5, 0.05),
 }
-#: Largest turn limit (rad): at 0.4 the BEM at μ = 3 (h = 0.1) stepped off the curve.
+#: Largest turn limit (rad), 0.2: at 0.4 the BEM at μ = 3 (h = 0.1) stepped off the curve. Not
+#: pinned by a test.
 MAX_TURN = 0.2
-#: FE surface element length of `default`: min(H_MAX, H_COHESIVE · μ^(−3/2)), in √(Rε). The mesh
-#: makes its surface edges as long as this allows (⅔ of it at worst, `mesh.graded_mesh`).
-#: H_MAX = 1/16: at 1/10 the coarser bulk near the surface shifts the FE separations by 4e-5
-#: (μ = 1, jump-in δ̄o against the BEM), more than the error estimate reports (3e-5).
-#: H_COHESIVE = 0.2: at 0.25 (edges 0.0214 at μ = 5) the P2 surface ripples (6 folds) and δ̄oc,
-#: ā_c are 1.2e-2, 8.7e-3 off; with edges 0.016, 2 folds and 1.3e-3, 9.9e-4.
+#: FE surface element length of `default`: min(H_MAX, H_COHESIVE · μ^(−3/2)), in √(Rε) (surface
+#: edges come out between ⅔ of it and all of it, `solids.mesh.graded_mesh`).
+#: H_MAX = 1/16: at 1/10 the FE separations at μ = 1 move by more than the error estimate says;
+#: test_bem_curve.py::test_bem_agrees_with_fem_within_the_fem_error_estimate.
+#: H_COHESIVE = 0.2: at 0.25 the P2 surface ripples at μ = 5. Not pinned by a test.
 H_MAX, H_COHESIVE = 0.0625, 0.2
-#: BEM element length of `default` at large μ: H_COHESIVE_BEM · μ^(−3/2) (no ripple at μ = 5).
+#: BEM element length of `default` at large μ, H_COHESIVE_BEM · μ^(−3/2) with 0.125: no ripple
+#: at μ = 5. Not pinned by a test.
 H_COHESIVE_BEM = 0.125
-#: Largest boundary-integral element at `default`: linear elements reproduce the centre
-#: deflection, and so the initial-contact separation δ̄o*, less well than the FE's quadratic ones
-#: (μ = 1: h = 0.05 puts δ̄o* 6e-3 off, h = 0.025 1.4e-3).
+#: Largest boundary-integral element at `default`, 0.025: linear elements reproduce the centre
+#: deflection, so δ̄o*, less well than quadratic ones (μ = 1: 0.05 puts δ̄o* 6e-3 off, 0.025
+#: 1.4e-3). Not pinned by a test.
 H_MAX_BEM = 0.025
-#: Truncation radius/depth of the half-space, in √(Rε). The solid outside is restored near the
-#: axis (`solids.fe.HalfSpace`) to O((a/L)²): at μ = 3 and 5 the events at L = 1e3 and 1e5 agree
-#: to 1e-7, with 25-40% fewer DOFs (μ = 5 `default`: 20.4 s against 24.5 s); at L = 1e2 they
-#: move by up to 1e-5. Uncorrected, the separations shifted by ~π μ^(3/2)|P̄|/L. Beyond
-#: μ ≈ 10 the size grows as 100 r_fine, keeping (a/L)² ≤ 1e-4.
+#: Truncation radius and depth of the FE half-space, 1e3 √(Rε) (at least 100 r_fine): the solid
+#: outside is restored (`solids.fe.HalfSpace`), so the events at L = 1e3 and 1e5 agree to 1e-7
+#: at μ = 3 and 5; test_fem_elastic.py::test_truncation_size_no_longer_matters.
 DOMAIN_SIZE = 1e3
-#: Last node of the boundary-integral traction grid, in √(Rε): the LJ tail beyond it carries a
-#: force of about (16/3) r⁻⁴ ≈ 5e-8 (the solid itself is not truncated).
+#: Last node of the boundary-integral traction grid, 100 √(Rε): the LJ tail beyond it carries a
+#: force of about (16/3) r⁻⁴ ≈ 5e-8 (the solid itself is not truncated). Not pinned by a test.
 TRACTION_RADIUS = 100.0
-#: FE bulk grading (element size growth per unit distance from the surface strip). A uniform
-#: disc's centre deflection (L = 1e3, h = 0.07) is 4.0e-5 too small at 0.3, 7e-6 at 0.2 and
-#: 2.6e-6 at 0.15 (DOFs 15k, 35k, 52k). At 0.3 the error estimate missed the force after the
-#: jump-in at μ = 3 (estimate 1.1e-7, error 1.8e-5 against the BEM `fine`: the grading and
-#: element-size errors cancelled in the coarser solve); at 0.2 it bounds every event (2.1e-5
-#: against 1.3e-5). μ = 5 `default`: 1186 surface nodes against 1142, about 6% slower.
+#: FE bulk grading (element size growth per unit distance from the surface strip), 0.2: at 0.3
+#: the error estimate missed the force after the jump-in at μ = 3, at 0.2 it bounds every event;
+#: test_bem_curve.py::test_bem_agrees_with_fem_within_the_fem_error_estimate (μ = 3 is slow).
 FE_GRADING = 0.2
-#: From this μ on the boundary-integral grid follows the contact edge (`path.grids`): fine
-#: (h_surface) only on the band from BAND_COHESIVE μ^(−3/2) inside the contact radius to as far
-#: outside the crack tip, sized by the LJ spring stiffness elsewhere, at most H_INSIDE inside
-#: the contact. μ = 5, with edge elements as long as the uniform grid's: P̄max, P̄off and both
-#: jumps agree with the uniform grid's to 1e-6 (test). `default`, one BLAS thread: μ = 5 8.0 s
-#: (at most 638 nodes) against 8.3 s (806 nodes, uniform); μ = 10 32 s (763) against 1356 s
-#: (3021); μ = 46.9, where a uniform grid would need some 27,000 nodes, see the README.
+#: From MU_TRACKING = 6 on the boundary-integral grids follow the contact edge (`path.grids`),
+#: where a uniform grid fine enough for the edge (n ∝ μ² nodes) outgrows the grids' overhead: fine
+#: (h_surface) within BAND_COHESIVE μ^(−3/2) of the contact radius and of the crack tip, at most
+#: H_INSIDE inside the contact. At μ = 5 they give the uniform grid's events:
+#: test_tracking.py::test_tracked_grids_give_the_uniform_grids_events (slow).
 MU_TRACKING = 6.0
 BAND_COHESIVE, H_INSIDE = 8.0, 0.1
-#: Growth of boundary-integral elements per element beyond the fine zone.
+#: Growth of boundary-integral elements per element beyond the fine zone, 0.1. Not pinned by a
+#: test.
 BEM_GROWTH = 0.1
-#: Element length at the edge of grids that follow it, `default`: H_COHESIVE_TRACKING μ^(−3/2),
-#: half the uniform grid's. At large μ the crack tip is a front a few elements wide (μ = 46.9:
-#: the gap rises from 1.1 to 1.7 ε across one element of H_COHESIVE_BEM μ^(−3/2)), and on such
-#: elements it moves in jerks: at μ = 46.9 near the jump-out (δ̄o = 74.03) the continuation
-#: needed 191 points and 852 Newton iterations to cross half a band, against 5 and 18 with
-#: elements half as long, and at μ = 10 the path showed 6 folds (4 of them ripple) against 2.
+#: Element length at the edge of grids that follow it, `default`: H_COHESIVE_TRACKING μ^(−3/2)
+#: with 0.0625, half the uniform grid's: the crack tip is a front a few elements wide, and on
+#: elements twice as long it moves in jerks (μ = 10: ripple folds). Not pinned by a test.
 H_COHESIVE_TRACKING = 0.0625
 #: Methods: finite elements ('fem') or the boundary-integral solver ('bem').
 METHODS = ("fem", "bem")
-#: The error estimate's coarser solve steepens the bulk (FE) or tail (BEM) grading by this
-#: factor: with FE grading 1/3 instead of 0.2 a uniform disc's centre deflection is about 4e-5
-#: too small instead of 7e-6, so the estimate also sees the bulk mesh (test_fem_elastic).
+#: The error estimate's coarser solve steepens the bulk (FE) or tail (BEM) grading by 5/3, so
+#: the estimate also sees the bulk mesh (FE grading 1/3 puts a uniform disc's centre deflection
+#: 4e-5 off, 0.2 7e-6); test_bem_curve.py::test_bem_agrees_with_fem_within_the_fem_error_estimate.
 COARSE_GRADING = 5.0 / 3.0
 
 
@@ -201,8 +194,9 @@ def jkr_radius(load, mu):
 
 def discretisation(mu, accuracy="default", *, p_end=1.0, method="fem", track_edge=None):
     """The discretisation (`FEDiscretisation`, `BEMDiscretisation` or `EdgeDiscretisation`) for
-    Tabor parameter `mu`, a preset name (draft, default, fine) and a method ('fem' or 'bem'). track_edge (BEM only): grids that follow the contact edge (True),
-    one uniform grid (False), or the first from μ = MU_TRACKING on (None)."""
+    Tabor parameter `mu`, a preset name (draft, default, fine) and a method ('fem' or 'bem').
+    track_edge (BEM only): grids that follow the contact edge (True), one uniform grid (False),
+    or the first from μ = MU_TRACKING on (None)."""
     mu = positive("mu", mu)
     if track_edge and method != "bem":
         raise InputError(f"track_edge needs method 'bem'; got method {method!r}")

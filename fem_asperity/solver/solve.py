@@ -2,12 +2,12 @@
 
 Two methods for the elastic solid behind the same surface problem and path. 'fem': axisymmetric
 P2 finite elements of the (layered) half-space (scikit-fem), condensed onto the surface. 'bem':
-the Boussinesq integral of the homogeneous half-space on a radial grid (`bem`), no mesh and no
-truncation of the solid. Then, for both: LJ 9-3 traction on the surface as a nonlinear boundary
+the Boussinesq integral of the homogeneous half-space on a radial grid (`solids.bem`), no mesh and
+no truncation of the solid. Then, for both: LJ 9-3 traction on the surface as a nonlinear boundary
 form with its consistent tangent; pseudo-arc-length continuation of the whole equilibrium curve;
 exact extrema of P̄; approach and retraction under δ̄o control read off it, jumps included (see
 `path.branches`, `path.whole_curve`). The error estimate is the change of each event on a
-coarser discretisation (`coarsened()` of the `presets` discretisation)."""
+coarser discretisation (`coarsened()` of the `solver.presets` discretisation)."""
 
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -26,10 +26,9 @@ from ..solids.fe import Solid
 from .presets import discretisation
 from .result import CurveResult, Model, worst_status
 
-#: BLAS threads while a curve is set up and traced. Its dense factorisations (n ≈ 100-3000) ran
-#: 2.7x slower with 2 OpenBLAS threads than with 1 on the 2-core development machine (μ = 5, BEM
-#: `default`: 98 s against 36 s), and so did the FE condensation beside a second job (μ = 5: 31 s
-#: against 12 s); the second core is better spent on a second curve.
+#: BLAS threads while a curve is set up and traced, 1: its dense factorisations (n ≈ 100-3000)
+#: ran slower with two threads than with one on a two-core machine, and the second core is better
+#: spent on the error estimate's second curve. Not pinned by a test.
 PATH_BLAS_THREADS = 1
 
 #: Event keys compared between the two meshes of the error estimate.
@@ -99,8 +98,9 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     radius_ratio: R/ε for the exact sphere profile instead of Derjaguin's parabola (None).
     p_end: the approach goes on until P̄ reaches this compressive force (2πRΔγ units).
     unstable_branch: also trace the unstable branches between the folds, so that `equilibrium`
-        is the whole S-shaped curve (about twice the cost at μ = 5); by default only the stable
-        branches are traced and each jump lands by energy descent (`branches`).
+        is the whole S-shaped curve (more work: LU factorisations and short steps); by default
+        only the stable branches are traced and each jump lands by energy descent
+        (`path.branches`).
     error_estimate: also solve with twice as large surface elements (and turn limit, and a
         steeper far-field grading) and report the change of every event. That solve runs
         alongside on the second core; if it fails, the estimate is None and `message` says why
