@@ -5,8 +5,8 @@ the stable state found downhill in energy (`landing.land`) and goes on from ther
 p_end. The retraction walks back along the branches the approach visited and traces only what the
 approach did not: from each landing onward in δ̄o, until that branch folds and the solid jumps
 off; where it lands on an approach branch it walks back along that. The unstable branches (LU
-factorisations and short steps, half the cost of the whole curve at μ = 5, most of an hour at
-μ = 10) are never traced; `whole_curve` reads the same paths off the whole curve instead.
+factorisations and short steps, much of the cost of the whole curve) are never traced;
+`whole_curve` reads the same paths off the whole curve instead.
 """
 
 from functools import partial
@@ -29,11 +29,12 @@ from .whole_curve import (
 
 #: Headings in (x̄o, δ̄o, P̄) from a landing: a stable branch always moves in δ̄o.
 _DOWN, _UP = np.array([0.0, -1.0, 0.0]), np.array([0.0, 1.0, 0.0])
-#: Most jumps one path may make (ripple of a far too coarse mesh, or a landing that loops).
+#: Most jumps one path may make (ripple of a far too coarse mesh, or a landing that loops). Not
+#: pinned by a test.
 MAX_JUMPS = 200
 #: A state moved to a new grid whose force then changes by more than this was at a fold of the
-#: new grid's curve: its landing is a jump (moves between grids change P̄ by ≤ 1.5e-5; at
-#: μ = 46.9 the jump-out happened at a regrid, P̄ −0.417 → −2e-4).
+#: new grid's curve: its landing is a jump (an ordinary move changes P̄ far less; the largest is
+#: in the curve's message, `grids.EdgeGrids.summary`). Not pinned by a test.
 REGRID_JUMP = 1e-3
 
 

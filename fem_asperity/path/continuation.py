@@ -21,19 +21,19 @@ from .surface import gap_keeping_step
 
 #: A Newton iteration reuses the last one's factorisation once that one's increment was ≤ REUSE
 #: relative to the state, refining each solve against the current matrix up to MOVED_REFINEMENTS
-#: times; if the last correction is still > ACCEPT of the step it factorises afresh. Chosen as
-#: the largest reuse whose refinements still converge (a state moved by 1e-3 gains about 100x a
-#: refinement, by 1e-2 it diverges) with the events unchanged to 2e-8 (BEM μ = 2, 5);
-#: test_surface_solver pins the refined solve.
+#: times; if the last correction is still > ACCEPT of the step it factorises afresh. REUSE: the
+#: largest whose refinements still converge (moved by 1e-2 they diverge), events unchanged;
+#: test_surface_solver.py::test_moved_linearisation_solves_like_a_fresh_one.
 REUSE, MOVED_REFINEMENTS, ACCEPT = 3e-3, 3, 1e-2
 #: Newton's line search: a step is accepted once the merit (relative residual + constraint)
 #: falls by ARMIJO × its fraction (the usual sufficient decrease), else halved, at most
-#: MAX_HALVINGS times (2^-20 of a step is below any useful move).
+#: MAX_HALVINGS times (2^-20 of a step is below any useful move). Not pinned by a test.
 ARMIJO, MAX_HALVINGS = 1e-4, 20
 #: An iteration that keeps more than SLOW_PROGRESS of the merit counts as slow (`patience`).
+#: Not pinned by a test.
 SLOW_PROGRESS = 0.9
 #: The border of a Cholesky-eliminated bordered matrix is degenerate (LU instead) below this
-#: relative size: double-precision cancellation of its terms, single-precision factor aside.
+#: relative size: double-precision cancellation of its terms. Not pinned by a test.
 DEGENERATE_BORDER = 1e-12
 #: Step-length control of `follow`, in the manner of scipy's solve_ivp: the first step FIRST_STEP;
 #: after an accepted point the step is scaled by SAFETY/ratio (ratio: the largest of the
@@ -42,6 +42,7 @@ DEGENERATE_BORDER = 1e-12
 #: failed on is halved (NEWTON_FAILURE_FACTOR) and caps the next ones at FAILED_CAP of itself,
 #: the cap relaxing by CAP_RELAXATION per accepted point (so a step that just failed is not
 #: tried again at once). A point the grid does not admit counts as INADMISSIBLE_RATIO (shorter).
+#: None of these is pinned by a test.
 FIRST_STEP, SAFETY, MIN_RATIO, MAX_FACTOR, MIN_FACTOR = 0.1, 0.8, 1e-3, 2.0, 0.2
 NEWTON_FAILURE_FACTOR, FAILED_CAP, CAP_RELAXATION = 0.5, 0.7, 1.5
 INADMISSIBLE_RATIO = 2.0
@@ -134,7 +135,7 @@ def _observables(surface, w, delta):
 def cholesky_in_place(matrix):
     """Cholesky factor (for `cho_solve`) of the symmetric `matrix`, overwriting it; raises
     LinAlgError if it is not positive definite. Its transpose is Fortran-ordered, so LAPACK
-    needs no copy (n = 1196, float32: 10 ms against 13 ms)."""
+    needs no copy."""
     return cho_factor(matrix.T, check_finite=False, overwrite_a=True)
 
 
@@ -142,12 +143,12 @@ class Linearisation:
     """The bordered Newton matrix [[∂g/∂w, ∂g/∂δ], [row · ∂o/∂(w, δ)]] at (w, δ), factorised.
 
     Where ∂g/∂w is positive definite (a stable state) it is solved by Cholesky and block
-    elimination (about 3x cheaper than LU); otherwise, or if the border is degenerate, by LU of
-    the whole matrix. `stable` records which, so stability comes for free with every point.
-    The factorisation is in single precision (1.5-2x faster than double at n = 800-2900) and each
-    solve is refined once against the double-precision bordered matrix, so a solution carries
-    about (κ·6e-8)² relative error for the bordered system's condition number κ (a factorisation
-    reused at a nearby state, `moved_to`, is refined up to MOVED_REFINEMENTS times).
+    elimination (cheaper than LU); otherwise, or if the border is degenerate, by LU of the whole
+    matrix. `stable` records which, so stability comes for free with every point. The
+    factorisation is in single precision (faster than double) and each solve is refined once
+    against the double-precision bordered matrix, so a solution carries about (κ·6e-8)² relative
+    error for the bordered system's condition number κ (a factorisation reused at a nearby
+    state, `moved_to`, is refined up to MOVED_REFINEMENTS times).
     """
 
     def __init__(self, surface, w, delta, row):
@@ -254,7 +255,7 @@ def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10
             linear = Linearisation(surface, w, delta, direction)
             dw, dd = linear.solve(rhs)
         if not (np.isfinite(dd) and np.all(np.isfinite(dw))):
-            return None  # a single-precision factorisation of a singular matrix (μ = 46.9)
+            return None  # a single-precision factorisation of a singular matrix
         alpha = gap_keeping_step(surface.gap(w, delta), dd - surface.interp @ dw)
         if scale is None:
             scale = 1.0 + np.max(np.abs(surface.stiffness @ w))
@@ -282,9 +283,8 @@ def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10
 def _predict(surface, trace_so_far, tangent, ds, front=None):
     """Predicted state (w, δ) a step ds along the curve from its last point: the tangent plus the
     curvature that passes through the point before (with the unit tangent at the last point, its
-    position σ = t·(o_prev − o_last) along the curve). Measured at μ = 5 (BEM, `default`): 15% fewer
-    Newton iterations than the tangent alone. With a `front` window, the crack tip's profile is
-    moved along (`_shift_front`)."""
+    position σ = t·(o_prev − o_last) along the curve): fewer Newton iterations than the tangent
+    alone. With a `front` window, the crack tip's profile is moved along (`_shift_front`)."""
     tr = trace_so_far
     dw, dd, t = tangent
     w, delta = tr.states[-1], tr.delta[-1]
@@ -303,11 +303,9 @@ def _predict(surface, trace_so_far, tangent, ds, front=None):
 def _shift_front(surface, trace_so_far, w_guess, d_guess, fraction, window):
     """w_guess with the last point's gap profile, moved by the crack tip's travel from the point
     before times `fraction`, blended in within `window` of the tip (fading out over a second
-    `window`). At large μ the tip is a front a few elements wide (μ = 46.9: the gap rises from
-    1.1 to 1.7 ε across one element of 3.9e-4), which the tangent's linear blend of two
-    positions misplaces: crossing half a band from the landing at μ = 46.9 took 10 points and
-    64 Newton iterations with the tangent alone, 5 and 16 with the front moved along (35 points
-    against 5 on elements twice as long)."""
+    `window`). At large μ the tip is a front a few elements wide, which the tangent's linear
+    blend of two positions misplaces. Pinned by
+    test_tracking.py::test_predictor_moves_the_crack_tip_front_along."""
     tr, r = trace_so_far, surface.r_nodes
     tips = [surface.crack_tip(tr.states[k], tr.delta[k]) for k in (-2, -1)]
     if min(tips) <= 0.0 or max(tips) >= r[-1]:
@@ -338,8 +336,8 @@ def follow(surface, w, delta, heading, settings, *, until, stop_at_fold=False, o
     `on_point(trace)` is called after each accepted point. `admissible(w, δ)`: a converged point
     for which it is False is retried with a shorter step, like one that turned too far (the
     surface resolves it only near where it was built, `grids.EdgeGrids.admits`).
-    Raises ContinuationError if the step
-    falls below ds_min, the point budget runs out or the path runs off beyond 2 x_start.
+    Raises ContinuationError if the step falls below ds_min, the point budget runs out or the
+    path runs off beyond 2 x_start.
     """
     s = settings
     result = Trace()
@@ -367,16 +365,15 @@ def follow(surface, w, delta, heading, settings, *, until, stop_at_fold=False, o
                            tol=s.tol, max_newton=s.max_newton, patience=s.patience)
         if step is not None:
             # The tangent (and stability) from the last Newton matrix, whose point is within
-            # √tol of the new one: one factorisation per point fewer (μ = 5, BEM `default`:
-            # 30.1 s → 28.6 s; events moved by ≤ 4e-8 relative, δ̄o of jump-out at μ = 3 6e-7).
+            # √tol of the new one: one factorisation per point fewer (the events move by < 1e-6).
             w_new, d_new, its, linear = step
             result.newton_iterations += its
             tangent_new = linear.tangent()
             if linear.moved and (tangent_new[2][1] * t[1] <= 0.0 or not linear.converged
                                  or not linear.stable):
                 # δ̄o turned (a fold, where stability changes) or an iterate next to a fold was
-                # unstable: the flag must be this point's (μ = 5: a stale flag before the fold
-                # left no root of dδ̄o/ds to find, and the parabola put the fold 1.7e-3 off).
+                # unstable: the flag must be this point's (a stale flag before the fold leaves no
+                # root of dδ̄o/ds to find, and the parabola misplaces the fold).
                 linear = Linearisation(surface, w_new, d_new, row)
                 tangent_new = linear.tangent()
             turn = np.arccos(np.clip(tangent_new[2] @ t, -1.0, 1.0))
@@ -423,7 +420,7 @@ def trace(surface, settings=TraceSettings(), progress=None):
 def approach_fraction(x, p, settings):
     """Progress of an approach at the centre gap x̄o and force P̄: half for the gap closing from
     x_start to 1 (log scale), half for P̄ rising from −1 to p_end once in contact (where x̄o hardly
-    moves; at μ = 10 that is most of the approach)."""
+    moves; at large μ that is most of the approach)."""
     closing = min(1.0, np.log(settings.x_start / max(x, 1e-3)) / np.log(settings.x_start))
     loading = min(1.0, max(0.0, (p + 1.0) / (settings.p_end + 1.0))) if closing >= 1.0 else 0.0
     return 0.5 * (closing + loading)

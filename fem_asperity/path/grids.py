@@ -1,15 +1,14 @@
 """Boundary-integral grids that follow the contact edge: the BEM at large μ.
 
 The cohesive zone at the contact edge is about μ^(−3/2) √(Rε) wide while the contact grows like
-μ^(1/2) √(Rε), so a grid uniformly fine enough for the edge needs n ∝ μ² nodes (μ = 10: 3021
-nodes, 23 min per curve; μ = 46.9: about 27,000 for the landing alone, beyond dense algebra).
-At large μ the edge has two parts: the contact radius ā_c (where the gap passes 1 ε) and,
-well outside it, the crack tip (`LJSurface.crack_tip`, where the adhered zone opens); between
-them the gap stays within 0.02 ε of 1 (μ = 5: ā_c = 2.48, tip 3.75). Here the grid is uniformly fine
-(h) only within a band of each (`edge_grid`); elsewhere its elements grow geometrically, as
-long as the LJ springs of each element stay weaker than its elastic stiffness (`spring_ratio`;
-coarser elements snap on their own and give the grid spurious equilibria). Before contact
-(and after a jump out of it) the grid is the small-μ BEM's (`bem.radial_grid`).
+μ^(1/2) √(Rε), so a grid uniformly fine enough for the edge needs n ∝ μ² nodes, beyond dense
+algebra at the largest μ. At large μ the edge has two parts: the contact radius ā_c (where the
+gap passes 1 ε) and, well outside it, the crack tip (`LJSurface.crack_tip`, where the adhered
+zone opens); between them the gap stays within 0.02 ε of 1. Here the grid is uniformly fine (h)
+only within a band of each (`edge_grid`); elsewhere its elements grow geometrically, as long as
+the LJ springs of each element stay weaker than its elastic stiffness (`spring_ratio`; coarser
+elements snap on their own and give the grid spurious equilibria). Before contact (and after a
+jump out of it) the grid is the small-μ BEM's (`solids.bem.radial_grid`).
 
 `EdgeGrids.land` finds a stable state downhill in energy on the grid of its edges, moving the
 iterate to a new grid (w interpolated linearly) whenever its edges leave the current one's band
@@ -31,8 +30,8 @@ from .surface import TIP_GAP, LJSurface
 
 #: A landing on grids that follow the edge runs in stages of LANDING_STAGE iterations (then
 #: moves to the grid of the iterate's edges if they left the band), at most MAX_STAGES of them:
-#: the jump-out at μ = 46.9, whose crack tip shrinks from 5.0 √(Rε) to 0 starting from next
-#: to the fold, where the descent creeps, took about 100 stages (9317 iterations, 77 s).
+#: room for the slowest landing met, the jump-out at μ = 46.9, whose crack tip shrinks to 0
+#: starting next to the fold, where the descent creeps. Not pinned by a test.
 LANDING_STAGE, MAX_STAGES = 100, 500
 _STIFFEST_SLOPE = float(scaled_traction_slope(TIP_GAP))
 
@@ -42,8 +41,8 @@ def spring_ratio(gap):
     `gap` (in ε) and still be stable on its own: max dp̄/dh / (dp̄/dh at the gap), ≥ 1, growing
     like gap⁴/6, unbounded (1e12) below 3^(1/6) ε where the springs stabilise. An element of
     a grid is unstable on its own where its LJ springs, ∝ μ^(3/2) (dp̄/dh) × its length, outgrow
-    its elastic stiffness; on a grid coarse there it snaps on its own (measured at μ = 5: two
-    states 0.02 apart in P̄ at one δ̄o, 1.3 √(Rε) outside the edge)."""
+    its elastic stiffness; on a grid coarse there it snaps on its own (a spurious second
+    equilibrium at the same δ̄o, outside the edge)."""
     return _STIFFEST_SLOPE / np.maximum(scaled_traction_slope(gap), 1e-12 * _STIFFEST_SLOPE)
 
 
@@ -96,23 +95,23 @@ class EdgeGrids:
 
     def _edges(self, surface, w, delta):
         """(ā_c, crack tip) of the state (w, δ̄o); (0, 0) without contact or with a tip inside
-        the band (a neck about to detach, on the pre-contact grid: at μ = 46.9 a landing whose
-        tip shrank to 0.046 moved to a grid on which the neck's gaps were negative)."""
+        the band (a neck about to detach stays on the pre-contact grid: moved to a grid built
+        for so small a tip, the neck's gaps can come out negative)."""
         tip = surface.crack_tip(w, delta)
         return (surface.contact(w, delta)[1], tip) if tip > self.band else (0.0, 0.0)
 
     def fits(self, surface, w, delta):
         """Whether `surface` resolves the state (w, δ̄o) as a grid built for it would: without a
-        crack tip (`LJSurface.crack_tip`) the pre-contact grid, else the grid of an ā_c and a tip each
-        within half a band of this state's (a surface not built here never fits)."""
+        crack tip (`LJSurface.crack_tip`) the pre-contact grid, else the grid of an ā_c and a tip
+        each within half a band of this state's (a surface not built here never fits)."""
         return self._within(surface, w, delta, 0.5 * self.band)
 
     def admits(self, surface, w, delta):
         """Whether `surface` still resolves the state (w, δ̄o), if no longer centred on it:
         its ā_c and tip within a band of those it was built for (inside its fine zones). A step
-        beyond is retried shorter (`follow`): its edge would lie on coarse elements, where the
-        curve ripples and shows false folds (μ = 46.9: a fold at a tip 0.7 √(Rε) before the
-        jump-out, from which the landing came back to the same branch)."""
+        beyond is retried shorter (`continuation.follow`): its edge would lie on coarse
+        elements, where the curve ripples and shows false folds (from which a landing comes back
+        to the same branch)."""
         return self._within(surface, w, delta, self.band)
 
     def _within(self, surface, w, delta, reach):

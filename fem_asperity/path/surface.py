@@ -1,9 +1,10 @@
-"""The nonlinear surface problem: LJ 9-3 springs between a rigid sphere and the condensed half-space.
+"""The nonlinear surface problem: LJ 9-3 springs between a rigid sphere and the condensed
+half-space.
 
 Unknowns: the upward surface displacement w at the surface nodes (in ε) and the sphere position δ̄o
 (in ε). Equilibrium g(w, δ) = S w + μ^(3/2) Nᵀ(W p̄(h)) = 0 with S = C⁻¹ the surface stiffness,
 N the interpolation to the surface quadrature points, W their weights (r included) and
-h = δ + r²/2 − N w the Derjaguin gap (or the exact sphere profile, see `gap_profile`).
+h = δ + r²/2 − N w the Derjaguin gap (or the exact sphere profile, see `derjaguin_profile`).
 """
 
 import numpy as np
@@ -15,7 +16,8 @@ from ..closed_forms.lj import scaled_traction as traction
 from ..closed_forms.lj import scaled_traction_slope as traction_slope
 from ..solids.operator import ElasticSurface
 
-#: A Newton step never lets a gap fall below this fraction of its current value.
+#: A Newton step never lets a gap fall below this fraction of its current value. Not pinned by a
+#: test.
 GAP_KEEP = 0.2
 
 
@@ -63,7 +65,7 @@ def derjaguin_profile(r, radius_ratio=None):
 
 #: The gap (ε) that marks the crack tip, where the adhered zone (gaps ≈ 1 ε, in tension outside
 #: the compressive contact radius ā_c) opens: the stiffest destabilising gap, 7.5^(1/6). At large
-#: μ the tip lies well outside ā_c (μ = 5, δ̄o = 3: ā_c = 2.48, gaps below 1.02 ε up to r = 3.5).
+#: μ the tip lies well outside ā_c; test_tracking.py::test_spring_ratio_limits checks the gap.
 TIP_GAP = 7.5 ** (1.0 / 6.0)
 
 
