@@ -3,14 +3,12 @@
     F̄(d̃) = ∫ P̄(ζ(d̃ − z̃)) φ̃(z̃) dz̃,    S̄(d̃) = ∫ Ā(ζ(d̃ − z̃)) φ̃(z̃) dz̃,
 
 with F̄ = F/(2πR A₀ Δγ η) (negative = tensile) and S̄ = S/(R A₀ η ε). The integrals are taken in the
-asperity separation δ̄o = ζ(d̃ − z̃) over the heights |z̃| ≤ 12/ω (the Gaussian beyond carries
-< 1e-31: with 9/ω the deep-asperity repulsion left out was 1.6e-3 of a tiny F̄ at ζ = 500),
-split at the law's breakpoints (δ̄oc, δ̄o*, a jump). Each piece is cut into 20 equal panels, the
-two end panels refined geometrically toward the ends 12 times (the repulsive law grows like
-(δ̄oc − δ̄o)^(3/2) from a breakpoint; the LJ terms vary on the scale ε, possibly far below the
-Gaussian's σ), with 5 Gauss-Legendre points per panel: 220 law evaluations per piece and d̃.
-Against adaptive quadrature the relative error is ≤ 9e-10 over μ 0.1-47, ζ 0.05-500, ω 0.2-1
-(40 panels, 25 levels, 6 points: 1.4e-12). Vectorised over d̃.
+asperity separation δ̄o = ζ(d̃ − z̃) over the heights |z̃| ≤ WINDOW/ω, split at the law's
+breakpoints (δ̄oc, δ̄o*, a jump). Each piece is cut into 20 equal panels, the two end panels
+refined geometrically toward the ends 12 times (the repulsive law grows like (δ̄oc − δ̄o)^(3/2)
+from a breakpoint; the LJ terms vary on the scale ε, possibly far below the Gaussian's σ), with 5
+Gauss-Legendre points per panel: 220 law evaluations per piece and d̃. Against adaptive
+quadrature the relative error is ≤ 9e-10 over μ 0.1-47, ζ 0.05-500, ω 0.2-1. Vectorised over d̃.
 """
 
 from dataclasses import dataclass
@@ -22,7 +20,10 @@ from fem_asperity.plumbing.checks import in_range
 
 from .surface import height_pdf
 
-#: Heights beyond ±WINDOW/ω are left out.
+#: Heights beyond ±WINDOW/ω are left out: the Gaussian beyond 12 carries < 1e-31 (at 9 the
+#: deep-asperity repulsion left out was 1.6e-3 of a tiny F̄ at ζ = 500). Gauss points per panel,
+#: equal panels per piece and geometric levels of each end panel: as above. All four pinned by
+#: test_gw.py::test_totals_match_adaptive_quadrature_to_1e8.
 WINDOW = 12.0
 _GAUSS = np.polynomial.legendre.leggauss(5)
 _UNIFORM, _LEVELS = 20, 12

@@ -19,8 +19,8 @@ from fem_asperity.plumbing.checks import positive
 
 
 class PaperLaw:
-    """The closed-form laws of `fem_asperity.closed_forms.laws` at one μ (`constants`: the paper's by default,
-    or refitted ones)."""
+    """The closed-form laws of `fem_asperity.closed_forms.laws` at one μ (`constants`: the
+    paper's by default, or refitted ones)."""
 
     def __init__(self, mu, constants=PAPER_LAWS, *, name="paper"):
         self.mu, self.constants, self.name = positive("mu", mu), constants, name
@@ -31,13 +31,15 @@ class PaperLaw:
 
 
 class TabulatedLaw:
-    """P̄(δ̄o), Ā(δ̄o) read off an approach path (`fem_asperity.path.curve.Curve`) at Tabor parameter mu.
+    """P̄(δ̄o), Ā(δ̄o) read off an approach path (`fem_asperity.path.curve.Curve`) at Tabor
+    parameter mu.
 
     Each branch of the path (between jumps) is interpolated by PCHIP in δ̄o; a jump is a
     breakpoint, as is δ̄o* (`delta_o_star`, where the area starts). Above the path's first δ̄o
-    the force is Bradley's (the deflection there is below 1e-4 ε at μ ≤ 10 for δ̄o ≥ 40) and the
-    area zero; below its last δ̄o the force continues as Hertz, P̄ = P̄₀ + (2/3π)[((δ_H − δ̄o)/μ)^1.5
-    − ((δ_H − δ̄₀)/μ)^1.5], with δ_H set by the slope at the last point, the area with slope −π.
+    the force is Bradley's (rigid: the centre deflection there, √2 π μ^(3/2) δ̄o^(−5/2) by
+    eq. 4, is small beside the gap) and the area zero; below its last δ̄o the force continues
+    as Hertz, P̄ = P̄₀ + (2/3π)[((δ_H − δ̄o)/μ)^1.5 − ((δ_H − δ̄₀)/μ)^1.5], with δ_H set by the
+    slope at the last point, the area with slope −π.
     `interpolation_error`: the largest error, relative to max |P̄|, of PCHIP through every other
     sample at the samples left out: an upper estimate of the error of PCHIP through all of them
     (twice as dense, so ~8x smaller where the curve is resolved).

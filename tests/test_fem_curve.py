@@ -1,4 +1,4 @@
-"""FE approach/retraction curves against independent references (draft meshes, a few seconds)."""
+"""FE approach/retraction curves against independent references (draft meshes)."""
 
 import numpy as np
 import pytest

@@ -44,8 +44,8 @@ def test_uniform_disc_centre_deflection(p2):
 
 def test_truncation_size_no_longer_matters():
     """The solid outside the truncation is restored: the centre deflection of a uniform disc
-    (2 p a / E* = 2) is the same for L = 100 and L = 1e4 (before, 0.0148 and 0.0002 too small,
-    falling like 1/L), and within 5e-5 of 2 (what remains is the bulk grading)."""
+    (2 p a / E* = 2) is the same for L = 100 and L = 1e4 (uncorrected, it falls short like 1/L),
+    and within 5e-5 of 2 (what remains is the bulk grading)."""
     deflections = []
     for size in (1e2, 1e4):
         mesh = graded_mesh(h_surface=0.07, r_fine=2.0, size=size, grading=0.3)

@@ -180,10 +180,9 @@ def verdicts(data, spread):
     return [{"claim": c, "found": f, "verdict": v} for c, f, v in rows]
 
 
-#: Tabor parameters at which the paper's law is checked against the solved (BEM) law by default.
-#: μ of the default paper-vs-solved comparison: both regimes, up to μ = 10 (from μ = 6 on the
-#: BEM's grids follow the contact edge, `fem_asperity.path.grids`). Fig. 9's μ = 46.9 solves too,
-#: but costs more than all of these together: it is asked for with --compare-mu.
+#: μ of the default paper-vs-solved (BEM) comparison: both regimes, up to μ = 10 (from
+#: MU_TRACKING on the BEM's grids follow the contact edge, `fem_asperity.path.grids`). Fig. 9's
+#: μ = 46.9 solves too, but costs more than all of these together: ask for it with --compare-mu.
 COMPARISON_MU = (0.1, 0.3, 0.5, 0.7, 1.0, 2.0, 3.0, 5.0, 10.0)
 
 

@@ -30,7 +30,7 @@ def _warn_one_line(message, *_args, **_kwargs):
 def run(main, prog, argv=None):
     """Call `main(argv)`: warnings print as one line, an `InputError` as one line + exit code 2,
     an `OSError` (e.g. an output folder that cannot be written) or a `ContinuationError` (a
-    curve the solver could not follow, e.g. the retraction at μ = 46.9) as one line + exit code 1."""
+    curve the solver could not follow) as one line + exit code 1."""
     with warnings.catch_warnings():
         warnings.showwarning = _warn_one_line
         try:

@@ -56,7 +56,7 @@ class BoussinesqSurface:
         values = np.concatenate([np.tile(1.0 - x, a.size), np.tile(x, a.size)])
         self.interp = csr_matrix((values, (rows, cols)), shape=(self.r_quad.size, nodes.size))
         weighted = self.interp.T.multiply(self.weights).tocsr()
-        mass = weighted @ self.interp  # tridiagonal: banded solves, 0.17 s less at n = 615
+        mass = weighted @ self.interp  # tridiagonal: banded Cholesky solves
         banded = np.zeros((2, nodes.size))
         banded[0, 1:], banded[1] = mass.diagonal(1), mass.diagonal()
         factor = cholesky_banded(banded), False

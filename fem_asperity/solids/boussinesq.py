@@ -26,11 +26,13 @@ from math import gamma
 import numpy as np
 from scipy.special import comb, ellipkm1, roots_legendre
 
-#: Points of the Gauss-Legendre and of the logarithmic Gauss rules.
+#: Points of the Gauss-Legendre and of the logarithmic Gauss rules;
+#: test_bem.py::test_displacement_matrix_matches_adaptive_quadrature.
 _POINTS = 8
 #: Taylor coefficients of Q(m₁) = K(m₁)/π = ½ Σ [(½)ₙ/n!]² m₁ⁿ used to split off the log.
 _Q_TAYLOR = np.array([0.5 * (gamma(n + 0.5) / (gamma(0.5) * gamma(n + 1))) ** 2 for n in range(6)])
-#: Kernel evaluations per chunk of the dense far-field sum (bounds memory at ~50 MB).
+#: Kernel evaluations per chunk of the dense far-field sum (bounds memory at ~50 MB). Not pinned
+#: by a test.
 _CHUNK = 2_000_000
 
 
@@ -70,9 +72,8 @@ _GL = _unit_gauss(_POINTS)
 _LOG = log_gauss(_POINTS)
 #: Far-field rules by the distance from r to an element, in element lengths: Gauss-Legendre with
 #: 8, 4, 2 points, whose error ρ^(−2n) (ρ = x + √(x² − 1), x = 1 + 2 × distance/length) is at
-#: most the 8-point rule's at one length, 5.7e-13. At 615 nodes (μ = 46.9) 44% of the pairs lie
-#: in the last tier and 52% in the middle one: 0.30 s for the matrix against 0.38 s with 8
-#: points throughout (best of 5).
+#: most the 8-point rule's at one length, 5.7e-13;
+#: test_bem.py::test_displacement_matrix_matches_adaptive_quadrature.
 _FAR_TIERS = ((1.0, 9.0), (9.0, 300.0), (300.0, np.inf))
 _FAR_RULES = tuple(_unit_gauss(n) for n in (8, 4, 2))
 

@@ -100,8 +100,7 @@ def _factor_surface_last(matrix, last):
     """(order, LU, S): sparse LU of the SPD `matrix` permuted by `order`, which puts the unknowns
     `last` last and the others in SuperLU's minimum-degree order, and the Schur complement
     S = K_ss − K_sb K_bb⁻¹ K_bs on `last`: it is the product of the factors' trailing blocks,
-    L_ss U_ss. At μ = 5 (72552 DOFs, 1196 surface unknowns) 2.6 s, against 12 s for solving
-    C = (K⁻¹)_ss column by column, and the same C to 1.2e-15."""
+    L_ss U_ss. Cheaper than solving C = (K⁻¹)_ss column by column, and the same C to rounding."""
     n, m = matrix.shape[0], last.size
     rest = np.setdiff1d(np.arange(n), last)
     inner = splu(matrix[rest][:, rest].tocsc(), permc_spec="MMD_AT_PLUS_A", **_SPD)

@@ -7,7 +7,8 @@ m(μ) = max_s dδ̄o/ds, read off the exact unit tangents of the continuation (r
 through the largest three), is negative below the onset, positive above it and continuous in μ;
 its root is the onset. The margin is read at a 5x finer turn limit than the preset's curve
 (0.02 rad at `default`): with 0.1 rad the sampled maximum scatters by ~3e-3 between presets,
-with 0.02 rad by 2e-5 (measured at μ = 0.69-0.70).
+with 0.02 rad by 2e-5 (μ = 0.69-0.70);
+test_bem_curve.py::test_fold_margin_changes_sign_between_069_and_070.
 """
 
 import time
