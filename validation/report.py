@@ -1,4 +1,5 @@
-"""The verification report: closed-form checks now, and what awaits the FE and GW stages."""
+"""The verification report: a provenance line, the closed-form checks, the rough-surface section
+and the items that await the FE sweeps."""
 
 import os
 import platform
