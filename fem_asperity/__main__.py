@@ -67,7 +67,8 @@ def build_parser():
     curve.add_argument("--unstable-branch", action="store_true",
                        help="also trace the unstable branches (the whole S-shaped curve in "
                             "equilibrium.csv and curve.png; about twice the cost at mu = 5)")
-    curve.add_argument("--out", help="folder for curve CSVs, curve.png, result.json, VTU/PNG fields")
+    curve.add_argument("--out",
+                       help="folder for curve CSVs, curve.png, result.json, VTU/PNG fields")
     curve.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
     onset = commands.add_parser("onset", help="smallest mu with a jump-in (displacement control)")
@@ -123,7 +124,8 @@ def _curve(args, parser):
     from .solver.output import write_all
     from .solver.solve import solve_curve, solve_to_tolerance
 
-    if args.layer_thickness is None and (args.layer_modulus_ratio != 1.0 or args.layer_nu is not None):
+    if args.layer_thickness is None and (args.layer_modulus_ratio != 1.0
+                                         or args.layer_nu is not None):
         parser.error("curve: --layer-modulus-ratio and --layer-nu need --layer-thickness")
     solid = Solid(nu=args.nu, layer_thickness=args.layer_thickness,
                   layer_modulus_ratio=args.layer_modulus_ratio,

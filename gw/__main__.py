@@ -94,7 +94,8 @@ def main(argv=None):
         if args.json:
             dump_json(row)
         else:
-            print_table([{"quantity": k, "value": v} for k, v in row.items()], ("quantity", "value"))
+            print_table([{"quantity": k, "value": v} for k, v in row.items()],
+                        ("quantity", "value"))
         return 0
     if args.points < 2:
         parser.error("curve: --points must be at least 2")

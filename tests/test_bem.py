@@ -1,4 +1,5 @@
-"""The boundary-integral half-space: quadrature rules, the Boussinesq kernel and its closed forms."""
+"""The boundary-integral half-space: quadrature rules, the Boussinesq kernel and its closed
+forms."""
 
 import numpy as np
 import pytest
@@ -18,7 +19,8 @@ def _surface(h, r_fine=2.0, r_max=100.0):
 def _hertz_error(surface):
     """Max |w + (1 − r²/2)| at the nodes r < 0.9 under the Hertz pressure of a = R = δ = 1."""
     r = surface.r_quad
-    w = surface.deflection(np.where(r < 1.0, 2.0 / np.pi * np.sqrt(np.clip(1.0 - r**2, 0, None)), 0))
+    hertz = 2.0 / np.pi * np.sqrt(np.clip(1.0 - r**2, 0, None))
+    w = surface.deflection(np.where(r < 1.0, hertz, 0))
     inside = surface.r_nodes < 0.9
     return np.max(np.abs(-w[inside] - (1.0 - 0.5 * surface.r_nodes[inside] ** 2)))
 
@@ -39,7 +41,7 @@ def test_displacement_matrix_matches_adaptive_quadrature():
                         [0.0, 1e-4, nodes[3] + 1e-3, nodes[7] - 1e-6]])
     u = displacement_matrix(nodes, r) @ p
     for ri, ui in zip(r, u):
-        ref = sum(quad(lambda s: kernel(ri, s) * np.interp(s, nodes, p), lo, hi,
+        ref = sum(quad(lambda s, ri=ri: kernel(ri, s) * np.interp(s, nodes, p), lo, hi,
                        points=[ri] if lo < ri < hi else None, epsabs=1e-14, epsrel=1e-13,
                        limit=200)[0]
                   for lo, hi in zip(nodes[:-1], nodes[1:]))

@@ -1,4 +1,5 @@
-"""Command lines as a user runs them: `python -m fem_asperity ...` and `python -m validation all`."""
+"""Command lines as a user runs them: `python -m fem_asperity ...` and
+`python -m validation all`."""
 
 import json
 import os

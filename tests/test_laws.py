@@ -126,5 +126,6 @@ def test_bad_mu_and_separation_are_refused(bad):
 def test_event_records_are_json_with_null_x_oc_without_jump_in():
     rows = laws.events([0.3, 2.0]).records()
     text = json.dumps(rows, allow_nan=False)
-    assert json.loads(text)[0]["x_oc"] is None and rows[1]["x_oc"] == pytest.approx(-0.3 + 2.2 * 2**0.4)
+    assert json.loads(text)[0]["x_oc"] is None
+    assert rows[1]["x_oc"] == pytest.approx(-0.3 + 2.2 * 2**0.4)
     assert set(rows[0]) == {"mu", "p_max", "delta_oc", "delta_o_star", "a_c", "jump_in", "x_oc"}

@@ -1,5 +1,6 @@
-"""The floor plan holds: each subpackage of fem_asperity imports only from those below it, scikit-fem
-only in the FE solid, and the store's revision key covers exactly the code that computes a curve."""
+"""The floor plan holds: each subpackage of fem_asperity imports only from those below it,
+scikit-fem only in the FE solid, and the store's revision key covers exactly the code that computes
+a curve."""
 
 import ast
 import importlib

@@ -45,7 +45,8 @@ def test_traction_slope_matches_finite_differences():
 
 def test_bradley_minimum_is_minus_one_at_unit_separation():
     assert bradley_force(1.0) == pytest.approx(-1.0, abs=1e-15)
-    best = minimize_scalar(bradley_force, bounds=(0.8, 2.0), method="bounded", options={"xatol": 1e-10})
+    best = minimize_scalar(bradley_force, bounds=(0.8, 2.0), method="bounded",
+                           options={"xatol": 1e-10})
     assert best.x == pytest.approx(1.0, abs=1e-7)
     assert best.fun == pytest.approx(-1.0, abs=1e-12)
 

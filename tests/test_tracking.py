@@ -115,7 +115,8 @@ def test_grids_tell_which_states_they_resolve():
 
 def test_predictor_moves_the_crack_tip_front_along():
     """Two states whose gap profiles are one front translated by 0.05: the prediction one step
-    on (fraction 1) is that front translated again, within the window, to interpolation error (`continuation._shift_front`)."""
+    on (fraction 1) is that front translated again, within the window, to interpolation error
+    (`continuation._shift_front`)."""
     from fem_asperity.path.continuation import Trace, _shift_front
     from fem_asperity.path.surface import LJSurface
     from fem_asperity.solids.bem import BoussinesqSurface, radial_grid

@@ -112,7 +112,8 @@ def main(argv=None):
     else:
         verdicts = [c["verdict"] for c in summary["checks"]]
         print(f"wrote {', '.join(summary['files'])} to {args.out}/")
-        print(f"closed-form checks: {verdicts.count('holds')} hold, {verdicts.count('fails')} fail, "
+        print(f"closed-form checks: {verdicts.count('holds')} hold, "
+              f"{verdicts.count('fails')} fail, "
               f"{verdicts.count('note')} notes (see report.md)")
         rough = [r["verdict"] for r in summary["rough_surface"]]
         print(f"rough-surface claims: {rough.count('holds')} hold, {rough.count('fails')} fail, "

@@ -49,7 +49,8 @@ def closed_form_checks(laws=PAPER_LAWS):
     x_one = ((1.0 - laws.x_0) / laws.x_1) ** 2.5
     return [
         Check("eq. 10 constant 2.116 = sqrt(2) pi (1 - 2145/4096)", "eq. 10",
-              laws.c_star, exact_c_star, 5e-4, "exact value; tol = half a unit of the printed digit"),
+              laws.c_star, exact_c_star, 5e-4,
+              "exact value; tol = half a unit of the printed digit"),
         Check("eqs. 7 and 10 cross at mu = 0.19 (a_c > 0 from there on)", "eqs. 6, 7, 10",
               mu_cross, laws.mu_a, 5e-3, "(0.922/2.116)^2; tol = half a unit of the printed digit"),
         Check("eq. 2 tends to DMT (-1) as mu -> 0", "eq. 2",

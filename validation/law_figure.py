@@ -1,4 +1,5 @@
-"""The paper's closed-form asperity events over μ, tabulated and drawn beside JKR, DMT and Maugis-Dugdale."""
+"""The paper's closed-form asperity events over μ, tabulated and drawn beside JKR, DMT and
+Maugis-Dugdale."""
 
 import numpy as np
 from matplotlib.figure import Figure

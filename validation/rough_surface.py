@@ -69,7 +69,8 @@ def _mu_at(theta_value, zeta):
 
 def collapse(points=17):
     """F̄max over a (μ, ζ) grid, binned by ξ = ζ/(μ+1), by θ and by ζ: the spread (max − min of
-    F̄max) in each of 12 log-bins of the parameter. A parameter that governs F̄max has small spreads."""
+    F̄max) in each of 12 log-bins of the parameter. A parameter that governs F̄max has small
+    spreads."""
     mu = np.logspace(-2, 2, points)
     zeta = np.logspace(-1, 2.5, points)
     m, z = (a.ravel() for a in np.meshgrid(mu, zeta))
@@ -208,12 +209,14 @@ def section(summary):
               "|---|---|---|---|---|---|---|---|---|---|"]
     for r in summary["law_comparison"]:
         lines.append(f"| {r['mu']:g} | {r['sigma_nm']:g} | {r['f_max_paper']:.4g} | "
-                     f"{r['f_max_refit']:.4g} | {r['f_max_solved']:.4g} | {r['max_dF']:.3g} | {r['d_at_max_dF']:.2f} | "
+                     f"{r['f_max_refit']:.4g} | {r['f_max_solved']:.4g} | {r['max_dF']:.3g} | "
+                     f"{r['d_at_max_dF']:.2f} | "
                      f"{r['max_dS_rel']:.3g} | {r['d_at_max_dS']:.2f} | "
                      f"{r['interpolation_error']:.1e} |")
     fit = summary["refit"]
     lines += ["", f"### The eight constants refitted from {fit['method'].upper()} curves", "",
-              f"Least squares in the paper's forms over μ = {', '.join(f'{m:g}' for m in fit['mu'])}"
+              "Least squares in the paper's forms over μ = "
+              f"{', '.join(f'{m:g}' for m in fit['mu'])}"
               f" ({fit['method']}, {fit['accuracy']}); mu_jump is the measured onset.", "",
               "| constant | paper | refit |", "|---|---|---|"]
     lines += [f"| {k} | {v:g} | {fit['laws'][k]:.4g} |" for k, v in fit["paper"].items()]

@@ -115,7 +115,8 @@ class AsperityLaws:
         return _out(np.where(mu >= self.mu_jump, self._jump_separation(mu), 1.0 + self.c_oc * mu))
 
     def delta_o_star(self, mu):
-        """Separation at first contact: eq. (10) 1 + c_star μ^1.5 below mu_jump, eq. (13) from it on."""
+        """Separation at first contact: eq. (10) 1 + c_star μ^1.5 below mu_jump, eq. (13) from it
+        on."""
         mu = np.asarray(positive("mu", mu))
         continuous = 1.0 + self.c_star * mu**1.5
         return _out(np.where(mu >= self.mu_jump, self._jump_separation(mu), continuous))

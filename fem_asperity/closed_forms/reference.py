@@ -64,7 +64,8 @@ def jkr_pull_off(*, mu):
 
 
 def jkr_compressive_radius(*, mu):
-    """Radius of the compressive zone at JKR maximum tension, ā_c = ā/√3 = 0.8794 μ^(1/2) (eq. A9)."""
+    """Radius of the compressive zone at JKR maximum tension, ā_c = ā/√3 = 0.8794 μ^(1/2)
+    (eq. A9)."""
     return jkr_pull_off(mu=mu).radius / np.sqrt(3.0)
 
 
@@ -106,7 +107,8 @@ def maugis_dugdale_pull_off(*, mu):
     log_t = np.linspace(-8.0, 8.0, 3201)
     i = int(np.argmin(_maugis_curve(lam, 10.0**log_t)[1]))
     if i in (0, log_t.size - 1):
-        raise InputError(f"mu must be in about [1e-6, 1e8] for the Maugis-Dugdale solver; got {mu!r}")
+        raise InputError("mu must be in about [1e-6, 1e8] for the Maugis-Dugdale solver; "
+                         f"got {mu!r}")
     best = minimize_scalar(
         lambda x: _maugis_curve(lam, 10.0**x)[1],
         bounds=(log_t[i - 1], log_t[i + 1]),

@@ -47,7 +47,8 @@ def curve_from_columns(delta, x, p, area, a_c, stable, branch):
 
 @dataclass(frozen=True)
 class Jump:
-    """A jump under displacement control at δ̄o = `delta`: state before (fold) and after (landing)."""
+    """A jump under displacement control at δ̄o = `delta`: state before (fold) and after
+    (landing)."""
 
     delta: float
     x_before: float
@@ -107,8 +108,8 @@ def parabola_vertex(t, y):
 
 def _most_tensile(path):
     """(P̄, δ̄o, ā_c) at the minimum of P̄ along `path`: the lowest sample, which is exact where
-    the minimum is interior to a stable segment (`whole_curve.refine_force_extrema` inserts it) and a
-    jump's landing otherwise. (A parabola through three samples would move δ̄o by ~1e-4 where P̄
+    the minimum is interior to a stable segment (`whole_curve.refine_force_extrema` inserts it)
+    and a jump's landing otherwise. (A parabola through three samples would move δ̄o by ~1e-4 where P̄
     is flat at its minimum.)"""
     i = int(np.argmin(path.p))
     return float(path.p[i]), float(path.delta[i]), float(path.a_c[i])

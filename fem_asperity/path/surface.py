@@ -96,7 +96,8 @@ class LJSurface:
     def residual(self, w, delta):
         """g(w, δ): out-of-balance surface loads (E* = 1 units)."""
         h = self.gap(w, delta)
-        return self.stiffness @ w + self.load_factor * (self.interp_t @ (self.weights * traction(h)))
+        return self.stiffness @ w + self.load_factor * (
+            self.interp_t @ (self.weights * traction(h)))
 
     def energy(self, w, delta):
         """E(w; δ) = ½ wᵀS w + μ^(3/2) Σ W φ̄(h), whose gradient in w is the residual g."""

@@ -52,7 +52,8 @@ def derjaguin(R, eps):
     ratio = float(np.min(np.asarray(R) / np.asarray(eps)))
     if ratio < DERJAGUIN_REFUSE:
         raise InputError(
-            f"R/eps must be >= {DERJAGUIN_REFUSE:g} for the Derjaguin approximation; got {ratio:.4g}"
+            f"R/eps must be >= {DERJAGUIN_REFUSE:g} for the Derjaguin approximation; "
+            f"got {ratio:.4g}"
         )
     if ratio < DERJAGUIN_WARN:
         warnings.warn(

@@ -49,7 +49,8 @@ def staged_folder(folder):
 
 
 def write_atomic(path, data):
-    """Write `data` (str or bytes) to `path` so that readers see the old file or the whole new one."""
+    """Write `data` (str or bytes) to `path` so that readers see the old file or the whole new
+    one."""
     with atomic_path(path) as tmp, open(tmp, "wb") as f:
         f.write(data.encode() if isinstance(data, str) else data)
     return Path(path)

@@ -35,9 +35,9 @@ def radial_grid(*, h, r_fine, r_max, growth=0.1):
 class BoussinesqSurface:
     """Surface operators of the homogeneous elastic half-space on the radial grid `nodes`.
 
-    The `operator.ElasticSurface` interface: r_nodes, r_quad (Gauss points, `quad_points` per element),
-    weights (Gauss weight × r), interp (nodal values → values at r_quad), compliance (dense C),
-    dofs (unknowns: the surface nodes).
+    The `operator.ElasticSurface` interface: r_nodes, r_quad (Gauss points, `quad_points` per
+    element), weights (Gauss weight × r), interp (nodal values → values at r_quad), compliance
+    (dense C), dofs (unknowns: the surface nodes).
     """
 
     def __init__(self, nodes, *, quad_points=4):

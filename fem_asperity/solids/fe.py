@@ -1,4 +1,5 @@
-"""Axisymmetric linear elasticity of the (optionally layered) half-space, condensed onto its surface.
+"""Axisymmetric linear elasticity of the (optionally layered) half-space, condensed onto its
+surface.
 
 Scaled variables: lengths r, z in √(Rε), displacements in ε, the substrate's E* = 1. In these
 units the physical problem σ·n = p becomes K u = μ^(3/2) F(p̄) with p̄ = p/(Δγ/ε), so the whole
@@ -202,11 +203,13 @@ class HalfSpace:
         self.weights = (fb.dx * np.asarray(fb.global_coordinates())[0]).ravel()
 
     def nodal_load(self, pressure_at_quad):
-        """Normal nodal loads interpᵀ(weights·p) for a pressure sampled at `r_quad` (E* = 1 units)."""
+        """Normal nodal loads interpᵀ(weights·p) for a pressure sampled at `r_quad` (E* = 1
+        units)."""
         return self.interp.T @ (self.weights * pressure_at_quad)
 
     def deflection(self, pressure_at_quad):
-        """Surface normal displacement (upward) at `r_nodes` under a pressure p (> 0 into the solid)."""
+        """Surface normal displacement (upward) at `r_nodes` under a pressure p (> 0 into the
+        solid)."""
         return -self.compliance @ self.nodal_load(pressure_at_quad)
 
     def displacement_field(self, nodal_load):

@@ -18,8 +18,9 @@ _MAX_PASSES = 60
 
 
 def _surface_edge(r_fine, h_surface):
-    """(edge, cells): the longest surface edge ≤ h_surface that red refinement of `cells` ∈ {1, 2, 3}
-    equal coarse cells across the strip reaches exactly (edge = r_fine / (cells · 2^k) > ⅔ h)."""
+    """(edge, cells): the longest surface edge ≤ h_surface that red refinement of `cells`
+    ∈ {1, 2, 3} equal coarse cells across the strip reaches exactly (edge = r_fine / (cells · 2^k)
+    > ⅔ h)."""
     needed = int(np.ceil(r_fine / h_surface - 1e-9))
     count, cells = min((m * 2 ** int(np.ceil(np.log2(max(needed / m, 1.0)))), m) for m in (1, 2, 3))
     return r_fine / count, cells

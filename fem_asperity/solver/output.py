@@ -1,4 +1,5 @@
-"""Files of one curve: CSV curves, a force/contact figure, and (FE) VTU + PNG fields at chosen states.
+"""Files of one curve: CSV curves, a force/contact figure, and (FE) VTU + PNG fields at chosen
+states.
 
 Field units: coordinates r, z in √(Rε); displacement in ε; σ_zz in Δγ/ε (the LJ traction unit,
 so σ_zz ≈ −p̄ on the surface). `write_all` writes all files or none (a staging folder).
