@@ -63,10 +63,11 @@ def build_parser():
     curve.add_argument("--nu", type=float, default=0.3, help="substrate Poisson's ratio (0.3)")
     curve.add_argument("--layer-nu", type=float, help="layer Poisson's ratio (default: --nu)")
     curve.add_argument("--no-error-estimate", action="store_true",
-                       help="skip the second, coarser mesh (about a third faster)")
+                       help="skip the second, coarser solve (no error estimate; faster)")
     curve.add_argument("--unstable-branch", action="store_true",
                        help="also trace the unstable branches (the whole S-shaped curve in "
-                            "equilibrium.csv and curve.png; about twice the cost at mu = 5)")
+                            "equilibrium.csv and curve.png; slower: LU factorisations and short "
+                            "steps on the unstable branches)")
     curve.add_argument("--out",
                        help="folder for curve CSVs, curve.png, result.json, VTU/PNG fields")
     curve.add_argument("--json", action="store_true", help="print JSON instead of a table")

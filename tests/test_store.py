@@ -15,6 +15,7 @@ def test_a_changed_solver_solves_afresh(tmp_path, monkeypatch):
     first = store.stored_curve(0.2, accuracy="draft", cache=tmp_path)
     again = store.stored_curve(0.2, accuracy="draft", cache=tmp_path)
     assert len(solved) == 1 and again.events == first.events
+    assert first.status == "ok" and "folds" in first.message
     monkeypatch.setattr(store, "solver_revision", lambda: "another")
     changed = store.stored_curve(0.2, accuracy="draft", cache=tmp_path)
     assert len(solved) == 2 and changed.folder != first.folder

@@ -51,7 +51,7 @@ def build_parser():
                              default="default", help="accuracy of the BEM curves (default)")
         command.add_argument("--refit-method", choices=("bem", "fem"), default="bem",
                              help="solver of the curves the constants are refitted from (bem: "
-                                  "seconds; fem: minutes the first time)")
+                                  "fast; fem: slow the first time, then stored)")
     return parser
 
 

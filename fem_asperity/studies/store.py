@@ -32,13 +32,16 @@ REVISION_ROOTS = ("fem_asperity.solver.solve", __name__)
 
 @dataclass(frozen=True)
 class StoredCurve:
-    """A stored curve: its approach path (`Curve`), `Events`, and the folder of its files."""
+    """A stored curve: its approach path (`Curve`), `Events`, the solve's status and message
+    (`CurveResult.status`: 'ok' unless it calls for a finer accuracy), and its folder."""
 
     mu: float
     method: str
     accuracy: str
     approach: Curve
     events: Events
+    status: str
+    message: str
     folder: Path
 
 
@@ -105,4 +108,6 @@ def stored_curve(mu, *, method="bem", accuracy="default", cache=None, progress=N
         write_atomic(folder / "events.json", json.dumps(asdict(result.events), indent=1) + "\n")
     columns = np.loadtxt(folder / "approach.csv", delimiter=",", skiprows=1, ndmin=2)
     events = _events_from_dict(json.loads((folder / "events.json").read_text()))
-    return StoredCurve(mu, method, accuracy, curve_from_columns(*columns.T), events, folder)
+    result = json.loads((folder / "result.json").read_text())
+    return StoredCurve(mu, method, accuracy, curve_from_columns(*columns.T), events,
+                       result["status"], result["message"], folder)
