@@ -125,3 +125,15 @@ def test_editing_help_or_a_plot_keeps_stored_curves_and_editing_the_solver_disca
                                  lambda s: s + "\nEXTRA = 1\n")
     assert help_edit == plot_edit == comment_edit == today
     assert solver_edit != today and kernel_edit != today
+
+
+def test_the_distribution_ships_every_subpackage():
+    """`pip install .` (not only an editable install) carries each folder of the package."""
+    tomllib = pytest.importorskip("tomllib")
+    from fnmatch import fnmatch
+
+    config = tomllib.loads((PACKAGE.parent / "pyproject.toml").read_text())
+    include = config["tool"]["setuptools"]["packages"]["find"]["include"]
+    for init in PACKAGE.rglob("__init__.py"):
+        name = ".".join(init.parent.relative_to(PACKAGE.parent).parts)
+        assert any(fnmatch(name, pattern) for pattern in include), name
