@@ -1,6 +1,7 @@
 """Command line of gw: `python -m gw fmax|curve ...` (see --help)."""
 
 import sys
+from functools import partial
 
 import numpy as np
 
@@ -74,7 +75,8 @@ def _law(args, mu):
     if args.law == "paper":
         return PaperLaw(mu)
     if args.law == "refit":
-        return PaperLaw(mu, stored_refit(accuracy=args.accuracy).laws, name="refit")
+        fit = stored_refit(accuracy=args.accuracy, announce=partial(print, file=sys.stderr))
+        return PaperLaw(mu, fit.laws, name="refit")
     bar = ProgressBar(f"{args.law.upper()} curve mu={mu:g} (stored for next time)")
     law = solved_law(mu, method=args.law, accuracy=args.accuracy, progress=bar)
     if bar.shown >= 0:  # solved now, not read from the store

@@ -76,6 +76,13 @@ def test_the_closed_forms_load_without_the_solvers():
         assert outside <= {"numpy", "scipy", "dataclasses", "typing", "warnings", "math"}, path
 
 
+def test_the_refit_is_keyed_by_its_own_code_as_well():
+    covered = set(store.revision_modules(("fem_asperity.studies.refit",)))
+    assert {"fem_asperity.studies.refit", "fem_asperity.studies.onset",
+            "fem_asperity.closed_forms.laws"} <= covered
+    assert set(store.revision_modules()) <= covered
+
+
 def test_the_revision_key_covers_the_solver_and_not_the_interfaces():
     covered = set(store.revision_modules())
     for module in ("solver.solve", "solver.presets", "solver.result", "path.continuation",
@@ -101,17 +108,17 @@ def _revision_with(monkeypatch, module, edit):
         return edit(data.decode()).encode() if self == origin else data
 
     monkeypatch.setattr(Path, "read_bytes", read_bytes)
-    store.solver_revision.cache_clear()
+    store.code_revision.cache_clear()
     try:
         return store.solver_revision()
     finally:
         monkeypatch.undo()
-        store.solver_revision.cache_clear()
+        store.code_revision.cache_clear()
 
 
 def test_editing_help_or_a_plot_keeps_stored_curves_and_editing_the_solver_discards_them(
         monkeypatch):
-    store.solver_revision.cache_clear()
+    store.code_revision.cache_clear()
     today = store.solver_revision()
     help_edit = _revision_with(monkeypatch, "fem_asperity.__main__",
                                lambda s: s.replace('help="print JSON', 'help="write JSON'))

@@ -237,7 +237,7 @@ def run(out, *, compare_mu=COMPARISON_MU, accuracy="default", refit_method="bem"
          f"refit vs solved "
          f"(BEM, {accuracy}) law at mu = "
          + ", ".join(f"{m:g}" for m in compare_mu) + " (solved once, then stored)")
-    fit = stored_refit(method=refit_method, accuracy=accuracy)
+    fit = stored_refit(method=refit_method, accuracy=accuracy, announce=step)
     summary["refit"] = {"laws": asdict(fit.laws), "paper": asdict(PAPER_LAWS),
                         "residuals": fit.residuals, "mu": fit.mu, "method": fit.method,
                         "accuracy": fit.accuracy}

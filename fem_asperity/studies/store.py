@@ -60,9 +60,9 @@ def _package_imports(module):
     return {name for name in found if name.split(".")[0] == "fem_asperity"}
 
 
-def revision_modules():
-    """The fem_asperity modules reachable by imports from REVISION_ROOTS, sorted."""
-    seen, todo = set(), list(REVISION_ROOTS)
+def revision_modules(roots=REVISION_ROOTS):
+    """The fem_asperity modules reachable by imports from `roots`, sorted."""
+    seen, todo = set(), list(roots)
     while todo:
         module = todo.pop()
         if module not in seen:
@@ -84,13 +84,18 @@ def _code_digest(module):
 
 
 @cache
-def solver_revision():
-    """First 10 hex digits of the SHA-256 of the code of `revision_modules()` (syntax trees
-    without docstrings, so editing a comment or a docstring keeps the stored curves)."""
+def code_revision(*roots):
+    """First 10 hex digits of the SHA-256 of the code of `revision_modules(roots)` (syntax trees
+    without docstrings, so editing a comment or a docstring keeps what was stored)."""
     digest = hashlib.sha256()
-    for module in revision_modules():
+    for module in revision_modules(roots):
         digest.update(module.encode() + b"\0" + _code_digest(module))
     return digest.hexdigest()[:10]
+
+
+def solver_revision():
+    """The revision of the code that computes a stored curve (REVISION_ROOTS)."""
+    return code_revision(*REVISION_ROOTS)
 
 
 def _events_from_dict(data):
