@@ -5,7 +5,8 @@ retraction (`solve_discretised`: no error estimate, so one curve), its size (DOF
 points, folds), and the relative error of P̄off, δ̄oc, ā_c, x̄oc against a reference: the BEM
 with elements REFERENCE_H_FACTOR times the `fine` size and a turn limit of REFERENCE_TURN (above
 --reference-mu-max, the BEM `fine` run itself). Then, per μ, the wall-time ratio FE/BEM at equal
-accuracy: the cheapest preset of each method whose P̄off error is within each P_OFF_TOLERANCES.
+accuracy: the cheapest preset of each method whose P̄off error is within each P_OFF_TOLERANCES
+and whose curve does not ripple.
 
     python benchmarks/curves.py                  # full run → benchmarks/results/curves.{md,json}
     python benchmarks/curves.py --quick          # seconds → benchmarks/results/curves-quick.*
@@ -93,8 +94,11 @@ def with_errors(rows, ref):
 
 
 def cheapest(rows, method, tol):
-    """Wall time of the cheapest preset of `method` with P̄off within `tol` (None if none)."""
+    """Wall time of the cheapest preset of `method` with P̄off within `tol` and no ripple (at
+    most the two folds of one jump-in and one jump-out: a rippled curve is not a usable result
+    however close its P̄off); None if none."""
     ok = [r["wall_s"] for r in rows if r["method"] == method and r["preset"] in PRESETS
+          and r["folds"] is not None and r["folds"] <= 2
           and r["rel_error"]["p_off"] is not None and r["rel_error"]["p_off"] <= tol]
     return min(ok) if ok else None
 
