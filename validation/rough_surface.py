@@ -6,7 +6,9 @@ The paper does not state ε, R or η. Here ε = 0.3 nm (so ζ = σ/0.3 nm) and �
 """
 
 import json
+import sys
 from dataclasses import asdict
+from functools import partial
 
 import numpy as np
 
@@ -237,7 +239,8 @@ def run(out, *, compare_mu=COMPARISON_MU, accuracy="default", refit_method="bem"
          f"refit vs solved "
          f"(BEM, {accuracy}) law at mu = "
          + ", ".join(f"{m:g}" for m in compare_mu) + " (solved once, then stored)")
-    fit = stored_refit(method=refit_method, accuracy=accuracy, announce=step)
+    fit = stored_refit(method=refit_method, accuracy=accuracy,
+                       announce=partial(print, file=sys.stderr, flush=True))
     summary["refit"] = {"laws": asdict(fit.laws), "paper": asdict(PAPER_LAWS),
                         "residuals": fit.residuals, "mu": fit.mu, "method": fit.method,
                         "accuracy": fit.accuracy}
