@@ -120,11 +120,15 @@ def _scales(args, parser):
 
 
 def _curve(args, parser):
+    from pathlib import Path
+
     from .plumbing.errors import ContinuationError
     from .solids.fe import Solid
     from .solver.output import write_all
     from .solver.solve import solve_curve, solve_to_tolerance
 
+    if args.out is not None and Path(args.out).exists() and not Path(args.out).is_dir():
+        parser.error(f"curve: --out must be a folder; {args.out} is a file")  # before solving
     if args.layer_thickness is None and (args.layer_modulus_ratio != 1.0
                                          or args.layer_nu is not None):
         parser.error("curve: --layer-modulus-ratio and --layer-nu need --layer-thickness")

@@ -1,4 +1,8 @@
-"""Command line of gw: `python -m gw fmax|curve ...` (see --help)."""
+"""Greenwood-Williamson rough surface with adhesion: `python -m gw fmax|curve` (each with --help).
+
+fmax: the strength of adhesion F̄max and the separation d̃ where it occurs; curve: the total force
+F̄ and contact area S̄ against d̃. Inputs dimensionless (--mu, --zeta, --omega or --sigma-r-eta)
+or in SI; the asperity law is the paper's, refitted, or a solved FE/BEM curve (--law)."""
 
 import sys
 from functools import partial
@@ -40,7 +44,7 @@ def _common(parser):
 
 
 def build_parser():
-    parser = Parser(prog=PROG, description="Greenwood-Williamson rough surface with adhesion.")
+    parser = Parser(prog=PROG, description=__doc__)
     commands = parser.add_subparsers(dest="command", required=True)
     _common(commands.add_parser("fmax", help="strength of adhesion F_max and its separation"))
     curve = commands.add_parser("curve", help="F and S against the mean separation d / sigma")

@@ -167,6 +167,15 @@ def test_curve_bad_input_is_one_line_exit_2(args):
     assert len(done.stderr.strip().splitlines()) == 1, done.stderr
 
 
+def test_curve_refuses_a_file_as_output_folder_before_solving(tmp_path):
+    taken = tmp_path / "taken.txt"
+    taken.write_text("a user's file\n")
+    done = cli("fem_asperity", "curve", "--mu", "1", "--method", "bem", "--out", str(taken))
+    assert done.returncode == 2 and "must be a folder" in done.stderr
+    assert "curve mu=1" not in done.stderr  # no progress bar: nothing was solved
+    assert taken.read_text() == "a user's file\n"
+
+
 def test_curve_bem_json_and_files(tmp_path):
     out = tmp_path / "bem"
     done = cli("fem_asperity", "curve", "--mu", "1", "--method", "bem", "--accuracy", "draft",
