@@ -1,10 +1,11 @@
-"""Single asperity: `python -m fem_asperity laws|scales|curve|onset` (each with --help).
+"""Single asperity: `python -m fem_asperity laws|scales|curve|sweep|onset` (each with --help).
 
 laws: the paper's closed-form events; scales: E*, the Tabor parameter and the natural scales
-from SI inputs; curve: approach and retraction solved by FE or boundary integral; onset: the
-smallest mu with a jump-in."""
+from SI inputs; curve: approach and retraction solved by FE or boundary integral; sweep: many
+curves over mu in parallel (stored, resumable); onset: the smallest mu with a jump-in."""
 
 import sys
+from pathlib import Path
 
 from .closed_forms.laws import PAPER_LAWS
 from .closed_forms.scales import Scales, effective_modulus
@@ -72,6 +73,26 @@ def build_parser():
                        help="folder for curve CSVs, curve.png, result.json, VTU/PNG fields")
     curve.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
+    sweep = commands.add_parser("sweep", help="curves over mu, in parallel, into events.csv "
+                                              "and curves.csv (resumable)")
+    which = sweep.add_mutually_exclusive_group(required=True)
+    which.add_argument("--mu", type=float, nargs="+", help="Tabor parameters, > 0")
+    which.add_argument("--mu-range", type=float, nargs=3, metavar=("LO", "HI", "N"),
+                       help="N values from LO to HI, evenly spaced in log mu")
+    sweep.add_argument("--method", choices=METHODS, default="fem",
+                       help="solver of each curve (default: %(default)s)")
+    sweep.add_argument("--accuracy", choices=tuple(PRESETS), default="default",
+                       help="resolution of each curve (default: %(default)s)")
+    sweep.add_argument("--no-error-estimate", action="store_true",
+                       help="skip each curve's second, coarser solve")
+    sweep.add_argument("--jobs", type=int, help="worker processes (default: one per core)")
+    sweep.add_argument("--scheduler", metavar="ADDRESS",
+                       help="run on the Dask cluster of this scheduler (tcp://host:8786) "
+                            "instead of local processes (extra 'cluster')")
+    sweep.add_argument("--out", required=True, help="folder for events.csv, curves.csv, "
+                                                    "sweep.json")
+    sweep.add_argument("--json", action="store_true", help="print the events as a JSON list")
+
     onset = commands.add_parser("onset", help="smallest mu with a jump-in (displacement control)")
     onset.add_argument("--method", choices=METHODS, default="bem",
                        help="solver of each curve (default: %(default)s)")
@@ -120,8 +141,6 @@ def _scales(args, parser):
 
 
 def _curve(args, parser):
-    from pathlib import Path
-
     from .plumbing.errors import ContinuationError
     from .solids.fe import Solid
     from .solver.output import write_all
@@ -164,6 +183,33 @@ def _curve(args, parser):
     return 0
 
 
+def _sweep(args, parser):
+    from .studies.sweep import mu_range, sweep
+
+    out = Path(args.out)
+    if out.exists() and not out.is_dir():
+        parser.error(f"sweep: --out must be a folder; {out} is a file")
+    mus = mu_range(*args.mu_range) if args.mu_range else args.mu
+    bar = ProgressBar(f"{args.method.upper()} sweep of {len(mus)} mu", time_left=True)
+    result = sweep(mus, method=args.method, accuracy=args.accuracy,
+                   error_estimate=not args.no_error_estimate, jobs=args.jobs,
+                   scheduler=args.scheduler, progress=bar)
+    bar.close()
+    result.write(out)
+    print(f"{result.solved} solved, {result.stored} read from the store, {len(result.failed)} "
+          f"failed; files in {out}", file=sys.stderr)
+    for row in result.rows:
+        if row.status != "ok":
+            print(f"warning: mu = {row.mu:g}: {row.status}: {row.message}", file=sys.stderr)
+    table = result.events_table()
+    if args.json:
+        dump_json(table)
+    else:
+        print_table(table, ("mu", "status", "p_max", "p_off", "delta_oc", "a_c", "jump_in",
+                            "x_oc", "p_off_err", "wall_s"))
+    return 1 if result.failed else 0
+
+
 def _onset(args, parser):
     from .plumbing.errors import ContinuationError
     from .studies.onset import jump_in_onset
@@ -184,7 +230,7 @@ def _onset(args, parser):
 def main(argv=None):
     parser = build_parser()
     args = parser.parse_args(argv)
-    return {"laws": _laws, "scales": _scales, "curve": _curve,
+    return {"laws": _laws, "scales": _scales, "curve": _curve, "sweep": _sweep,
             "onset": _onset}[args.command](args, parser) or 0
 
 

@@ -5,6 +5,7 @@ import json
 import math
 import os
 import sys
+import time
 import warnings
 
 from .errors import ContinuationError, InputError
@@ -70,15 +71,24 @@ def print_table(rows, columns):
         print("  ".join(v.rjust(w) for v, w in zip(r, widths)))
 
 
+def _duration(seconds):
+    """'42 s', '7 min', '2.5 h'."""
+    if seconds < 120:
+        return f"{seconds:.0f} s"
+    return f"{seconds / 60:.0f} min" if seconds < 7200 else f"{seconds / 3600:.1f} h"
+
+
 class ProgressBar:
     """A one-line progress bar on stderr: `label [#####.....] 50%`, redrawn in place on a
-    terminal, printed every 10% otherwise (logs stay short); it only moves forward."""
+    terminal, printed every 10% otherwise (logs stay short); it only moves forward. With
+    `time_left`, it adds the time left, extrapolated from the time so far."""
 
-    def __init__(self, label, width=30, stream=None):
+    def __init__(self, label, width=30, stream=None, time_left=False):
         self.label, self.width = label, width
         self.stream = stream or sys.stderr
         self.tty = self.stream.isatty()
         self.shown = -1
+        self.started = time.perf_counter() if time_left else None
 
     def __call__(self, fraction):
         percent = int(100 * min(max(fraction, 0.0), 1.0))
@@ -88,6 +98,9 @@ class ProgressBar:
         self.shown = percent
         filled = self.width * percent // 100
         bar = f"{self.label} [{'#' * filled}{'.' * (self.width - filled)}] {percent:3d}%"
+        if self.started is not None and 0 < percent < 100:
+            elapsed = time.perf_counter() - self.started
+            bar += f", about {_duration(elapsed * (100 - percent) / percent)} left"
         self.stream.write(("\r" + bar) if self.tty else bar + "\n")
         self.stream.flush()
 

@@ -30,18 +30,27 @@ from ..solver.solve import solve_curve
 REVISION_ROOTS = ("fem_asperity.solver.solve", __name__)
 
 
+#: Cost columns of a stored curve (from its result.json).
+COST_KEYS = ("dofs", "surface_nodes", "points", "newton_iterations", "wall_s")
+
+
 @dataclass(frozen=True)
 class StoredCurve:
-    """A stored curve: its approach path (`Curve`), `Events`, the solve's status and message
-    (`CurveResult.status`: 'ok' unless it calls for a finer accuracy), and its folder."""
+    """A stored curve: its approach and retraction paths (`Curve`), `Events`, the error estimate
+    (None where the curve was stored without one), the solve's status and message
+    (`CurveResult.status`: 'ok' unless it calls for a finer accuracy), its cost (`COST_KEYS`)
+    and its folder."""
 
     mu: float
     method: str
     accuracy: str
     approach: Curve
+    retraction: Curve
     events: Events
+    error_estimate: dict | None
     status: str
     message: str
+    cost: dict
     folder: Path
 
 
@@ -103,16 +112,46 @@ def _events_from_dict(data):
     return Events(**{**data, **jumps})
 
 
-def stored_curve(mu, *, method="bem", accuracy="default", cache=None, progress=None):
-    """`StoredCurve` at `mu`, solved now (and stored) if not stored yet."""
-    folder = Path(cache or cache_dir()) / f"{method}-{accuracy}-mu{mu:.6g}-{solver_revision()}"
-    if not (folder / "events.json").exists():
-        result = solve_curve(mu, method=method, accuracy=accuracy, error_estimate=False,
-                             progress=progress)
-        write_curves(result, folder)
-        write_atomic(folder / "events.json", json.dumps(asdict(result.events), indent=1) + "\n")
-    columns = np.loadtxt(folder / "approach.csv", delimiter=",", skiprows=1, ndmin=2)
-    events = _events_from_dict(json.loads((folder / "events.json").read_text()))
+def curve_folder(mu, *, method, accuracy, error_estimate, cache=None):
+    """Where the curve at (`mu`, method, accuracy) of this solver revision is stored; curves with
+    and without the error estimate are kept apart (the estimate costs a second solve)."""
+    estimate = "-estimated" if error_estimate else ""
+    name = f"{method}-{accuracy}{estimate}-mu{float(mu):.12g}-{solver_revision()}"
+    return Path(cache or cache_dir()) / name
+
+
+def is_stored(folder):
+    """Whether `folder` holds a complete stored curve (events.json is written last)."""
+    return (Path(folder) / "events.json").exists()
+
+
+def keep(result, folder):
+    """Store the `CurveResult` in `folder`: its curves and result.json, then events.json."""
+    write_curves(result, folder)
+    write_atomic(Path(folder) / "events.json", json.dumps(asdict(result.events), indent=1) + "\n")
+
+
+def _read_curve(path):
+    return curve_from_columns(*np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2).T)
+
+
+def read_stored(folder):
+    """The `StoredCurve` kept in `folder`."""
+    folder = Path(folder)
     result = json.loads((folder / "result.json").read_text())
-    return StoredCurve(mu, method, accuracy, curve_from_columns(*columns.T), events,
-                       result["status"], result["message"], folder)
+    events = _events_from_dict(json.loads((folder / "events.json").read_text()))
+    return StoredCurve(result["mu"], result["method"], result["accuracy"],
+                       _read_curve(folder / "approach.csv"), _read_curve(folder / "retraction.csv"),
+                       events, result["error_estimate"], result["status"], result["message"],
+                       {key: result[key] for key in COST_KEYS}, folder)
+
+
+def stored_curve(mu, *, method="bem", accuracy="default", error_estimate=False, cache=None,
+                 progress=None):
+    """`StoredCurve` at `mu`, solved now (and stored) if not stored yet."""
+    folder = curve_folder(mu, method=method, accuracy=accuracy, error_estimate=error_estimate,
+                          cache=cache)
+    if not is_stored(folder):
+        keep(solve_curve(mu, method=method, accuracy=accuracy, error_estimate=error_estimate,
+                         progress=progress), folder)
+    return read_stored(folder)

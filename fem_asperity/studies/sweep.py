@@ -1,0 +1,260 @@
+"""Sweeps over μ: many single-asperity curves solved in parallel, each kept in the store as it
+finishes, so that a rerun (after a crash, a Ctrl-C or with more μ) solves only what is missing.
+
+Curves run in worker processes on this machine (`jobs`, both cores by default, one BLAS thread
+each: `solver.solve.PATH_BLAS_THREADS`) or on a Dask cluster (`scheduler`, the address of a
+running `dask.distributed` scheduler; the optional extra `cluster`). Workers only solve; this
+process keeps each result in its own store, so a cluster needs no shared file system. A μ whose
+curve fails is reported in its row (status 'failed' and the error) and never costs the others.
+
+Output (`Sweep.write`): events.csv (one row per μ: every event, its error estimate absolute and
+relative, the cost and the status), curves.csv (the approach and retraction paths in long format)
+and sweep.json (units of every column, the inputs and the solver revision).
+"""
+
+import csv
+import io
+import json
+import math
+import multiprocessing
+import os
+import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+
+from ..path.curve import Curve
+from ..plumbing.checks import in_range
+from ..plumbing.errors import InputError
+from ..plumbing.files import staged_folder, write_atomic
+from ..plumbing.version import __version__
+from ..solver.presets import METHODS, PRESETS
+from ..solver.solve import solve_curve
+from .store import COST_KEYS, curve_folder, is_stored, keep, read_stored, solver_revision
+
+#: Columns of curves.csv with their units (dimensionless, the paper's scales).
+CURVE_COLUMNS = {"mu": "-", "path": "approach | retraction", "point": "index along the path",
+                 "delta_o": "eps", "x_o": "eps", "p": "2 pi R dgamma (< 0 tensile)",
+                 "area": "eps R", "a_c": "sqrt(eps R)", "stable": "1 | 0"}
+#: Units of the events (events.csv names each estimate `<event>_err` and `<event>_rel_err`).
+EVENT_UNITS = {"p_max": "2 pi R dgamma", "delta_oc": "eps", "delta_o_star": "eps",
+               "a_c": "sqrt(eps R)", "jump_in": "true | false", "x_oc": "eps",
+               "delta_jump_in": "eps", "p_jump_before": "2 pi R dgamma",
+               "p_jump_after": "2 pi R dgamma", "p_off": "2 pi R dgamma", "delta_off": "eps",
+               "delta_jump_out": "eps", "p_jump_out_before": "2 pi R dgamma",
+               "p_jump_out_after": "2 pi R dgamma"}
+#: Units of the cost columns.
+COST_UNITS = {"dofs": "-", "surface_nodes": "-", "points": "-", "newton_iterations": "-",
+              "wall_s": "s (of the solve that stored the curve)"}
+
+
+@dataclass(frozen=True)
+class SweepRow:
+    """One μ of a sweep: its `StoredCurve` (None if it failed), status and message."""
+
+    mu: float
+    status: str
+    message: str
+    curve: object = None
+
+    def events_row(self):
+        """The events.csv row: μ, status, every event with its error estimate (absolute and
+        relative to the event's magnitude), the cost, the message."""
+        row = {"mu": self.mu, "status": self.status}
+        records = self.curve.events.records() if self.curve else dict.fromkeys(EVENT_UNITS)
+        estimate = (self.curve.error_estimate if self.curve else None) or {}
+        for key in EVENT_UNITS:
+            value, error = records[key], estimate.get(key)
+            row[key] = value
+            if key != "jump_in":
+                row[f"{key}_err"] = error
+                row[f"{key}_rel_err"] = (error / abs(value) if error is not None and value
+                                         else None)
+        row.update(self.curve.cost if self.curve else dict.fromkeys(COST_KEYS))
+        row["message"] = self.message
+        return row
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """The rows of a sweep (by increasing μ) and how they were obtained: method, accuracy,
+    whether with the error estimate, how many curves were solved now and how many read from the
+    store, and the wall time."""
+
+    method: str
+    accuracy: str
+    error_estimate: bool
+    rows: tuple
+    solved: int
+    stored: int
+    wall_s: float
+
+    @property
+    def failed(self):
+        """The rows whose curve could not be solved."""
+        return [row for row in self.rows if row.curve is None]
+
+    def events_table(self):
+        """events.csv as a list of dicts, one per μ."""
+        return [row.events_row() for row in self.rows]
+
+    def curves_table(self):
+        """curves.csv as a list of dicts: every point of every approach and retraction."""
+        table = []
+        for row in self.rows:
+            if row.curve is None:
+                continue
+            for name in ("approach", "retraction"):
+                table += _long(row.mu, name, getattr(row.curve, name))
+        return table
+
+    def to_dataframe(self, table="events"):
+        """events.csv ('events') or curves.csv ('curves') as a pandas DataFrame (optional
+        extra `tables`)."""
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ImportError("to_dataframe needs pandas: pip install pandas") from None
+        return pd.DataFrame(self.events_table() if table == "events" else self.curves_table())
+
+    def records(self):
+        """The sidecar sweep.json: inputs, counters, units and provenance."""
+        return {"method": self.method, "accuracy": self.accuracy,
+                "error_estimate": self.error_estimate, "mu": [row.mu for row in self.rows],
+                "solved": self.solved, "stored": self.stored, "failed": len(self.failed),
+                "wall_s": self.wall_s, "solver_revision": solver_revision(),
+                "version": __version__, "units": {"events": {**EVENT_UNITS, **COST_UNITS},
+                                                  "curves": CURVE_COLUMNS}}
+
+    def write(self, folder):
+        """events.csv, curves.csv and sweep.json into `folder`, all or none."""
+        folder = Path(folder)
+        with staged_folder(folder) as stage:
+            write_atomic(stage / "events.csv", _csv(self.events_table()))
+            write_atomic(stage / "curves.csv", _csv(self.curves_table(), list(CURVE_COLUMNS)))
+            write_atomic(stage / "sweep.json",
+                         json.dumps(self.records(), indent=1, allow_nan=False) + "\n")
+        return [folder / name for name in ("events.csv", "curves.csv", "sweep.json")]
+
+
+def _long(mu, name, curve: Curve):
+    return [{"mu": mu, "path": name, "point": i, "delta_o": float(curve.delta[i]),
+             "x_o": float(curve.x[i]), "p": float(curve.p[i]), "area": float(curve.area[i]),
+             "a_c": float(curve.a_c[i]), "stable": int(curve.stable[i])}
+            for i in range(len(curve))]
+
+
+def _cell(value):
+    if value is None:
+        return ""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return f"{value:.10g}" if math.isfinite(value) else ""
+    return str(value).replace("\n", " ")
+
+
+def _csv(rows, columns=None):
+    """CSV text of dict rows (missing values empty); text fields quoted where needed."""
+    columns = columns or (list(rows[0]) if rows else ["mu"])
+    out = io.StringIO()
+    writer = csv.writer(out, lineterminator="\n")
+    writer.writerow(columns)
+    for row in rows:
+        writer.writerow([_cell(row[c]) for c in columns])
+    return out.getvalue()
+
+
+def mu_range(lo, hi, n):
+    """`n` Tabor parameters from `lo` to `hi`, evenly spaced in log μ (μ spans decades)."""
+    lo, hi = in_range("lo", lo, 0.0, 1e4), in_range("hi", hi, 0.0, 1e4)
+    if not (lo < hi and int(n) == n and n >= 2):
+        raise InputError(f"mu range needs lo < hi and n >= 2 whole; got {lo:g}, {hi:g}, {n}")
+    return [float(m) for m in np.geomspace(lo, hi, int(n))]
+
+
+def solve_for_sweep(mu, method, accuracy, error_estimate):
+    """The worker's job: one curve, without its solved model (it does not travel between
+    processes), or the exception that stopped it."""
+    try:
+        result = solve_curve(mu, method=method, accuracy=accuracy, error_estimate=error_estimate)
+    except Exception as exc:  # reported in the μ's row; the sweep goes on
+        return exc
+    return replace(result, model=None)
+
+
+def _local_jobs(jobs, todo, args):
+    """Submit the curves to `jobs` worker processes; yield (μ, result or exception)."""
+    # Fresh interpreters (spawn): forking a process that runs BLAS and progress threads can
+    # deadlock, and Python deprecates it.
+    context = multiprocessing.get_context("spawn")
+    with ProcessPoolExecutor(max_workers=jobs, mp_context=context) as pool:
+        futures = {pool.submit(solve_for_sweep, mu, *args): mu for mu in todo}
+        try:
+            for future in as_completed(futures):
+                yield futures[future], future.result()
+        except BaseException:  # Ctrl-C: stop waiting; what is stored stays stored
+            for future in futures:
+                future.cancel()
+            raise
+
+
+def _cluster_jobs(scheduler, todo, args):
+    """Submit the curves to the Dask scheduler at `scheduler`; yield (μ, result or exception)."""
+    try:
+        from dask.distributed import Client
+        from dask.distributed import as_completed as completed
+    except ImportError:
+        raise InputError("--scheduler needs dask.distributed: pip install "
+                         "'adhesive-contact-verification[cluster]'") from None
+    with Client(scheduler) as client:
+        futures = {client.submit(solve_for_sweep, mu, *args, pure=False): mu for mu in todo}
+        for future in completed(list(futures)):
+            yield futures[future], future.result()
+
+
+def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, jobs=None,
+          scheduler=None, cache=None, progress=None):
+    """Solve the curves at every μ of `mus` (those not stored yet) and return the `Sweep`.
+
+    method, accuracy, error_estimate: as `solve_curve`. jobs: worker processes on this machine
+    (default: one per core); scheduler: address of a Dask scheduler instead ('tcp://host:8786').
+    cache: the store's folder (default $ADHESION_CACHE). progress: callable(fraction of the
+    curves to solve that are done), called as each finishes.
+    """
+    mus = sorted({float(in_range("mu", m, 0.0, 1e4)) for m in np.atleast_1d(mus)})
+    if not mus:
+        raise InputError("a sweep needs at least one mu")
+    if method not in METHODS or accuracy not in PRESETS:
+        raise InputError(f"method must be one of {', '.join(METHODS)} and accuracy one of "
+                         f"{', '.join(PRESETS)}; got {method!r}, {accuracy!r}")
+    jobs = jobs or os.cpu_count() or 1
+    if int(jobs) != jobs or jobs < 1:
+        raise InputError(f"jobs must be a whole number >= 1; got {jobs!r}")
+    start = time.perf_counter()
+    folders = {mu: curve_folder(mu, method=method, accuracy=accuracy,
+                                error_estimate=error_estimate, cache=cache) for mu in mus}
+    todo = [mu for mu in mus if not is_stored(folders[mu])]
+    failures = {}
+    args = (method, accuracy, error_estimate)
+    runs = (_cluster_jobs(scheduler, todo, args) if scheduler
+            else _local_jobs(int(jobs), todo, args))
+    for done, (mu, result) in enumerate(runs, 1):
+        if isinstance(result, BaseException):
+            failures[mu] = f"{type(result).__name__}: {result}"
+        else:
+            keep(result, folders[mu])
+        if progress is not None:
+            progress(done / len(todo))
+    rows = []
+    for mu in mus:
+        if mu in failures:
+            rows.append(SweepRow(mu, "failed", failures[mu]))
+        else:
+            stored = read_stored(folders[mu])
+            rows.append(SweepRow(mu, stored.status, stored.message, stored))
+    return Sweep(method, accuracy, error_estimate, tuple(rows), solved=len(todo) - len(failures),
+                 stored=len(mus) - len(todo), wall_s=time.perf_counter() - start)
+
