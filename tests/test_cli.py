@@ -80,13 +80,25 @@ def test_validation_all_writes_its_files(tmp_path):
     summary = json.loads(done.stdout)
     assert sorted(p.name for p in out.iterdir()) == [
         "law_comparison.png", "paper_laws.json", "paper_laws.png", "report.md",
-        "rough_surface.json", "rough_surface.md", "rough_surface.png"]
+        "rough_surface.json", "rough_surface.md", "rough_surface.png", "single_asperity"]
+    assert sorted(p.name for p in (out / "single_asperity").iterdir()) == [
+        "fig3.png", "fig4.png", "fig5.png", "fig6.png", "fig7.png", "hysteresis.png",
+        "report.json", "report.md"]
+    single = json.loads((out / "single_asperity" / "report.json").read_text())
+    assert set(single["refit"]) == {"eq2_coeff", "eq6_coeff", "eq6_threshold", "eq7_slope",
+                                    "eq10_coeff", "eq12_a", "eq12_b"}
+    for fit in single["refit"].values():
+        assert {"value", "ci95", "paper", "mu_range"} <= set(fit) and len(fit["ci95"]) == 2
+    assert 0.69 < single["mu_onset"] < 0.705 and summary["mu_onset"] == single["mu_onset"]
+    for verdict in single["verdicts"]:
+        assert set(verdict) == {"claim", "paper", "measured", "error", "holds"}
     assert summary["not_yet_available"]  # says what is not there yet
     assert {r["claim"] for r in summary["rough_surface"]} >= {"F̄max → 0.75 as μ → ∞"}
     assert summary["law_comparison"][0]["mu"] == 1.0
     report = (out / "report.md").read_text()
     assert "Not yet judged" in report and "| holds |" in report
     assert "Paper's law against the solved law" in report
+    assert "Single asperity (FE sweeps)" in report
     assert list((tmp_path / "cache").glob("bem-draft-mu1-*/result.json"))  # stored for reuse
     table = json.loads((out / "paper_laws.json").read_text())
     assert len(table["rows"]) == 101 and table["constants"]["c_off"] == 1.98

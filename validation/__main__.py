@@ -1,7 +1,12 @@
-"""Command line of validation: `python -m validation all|rough-surface --out DIR` (see --help)."""
+"""The verification report: `python -m validation all|single-asperity|rough-surface --out DIR`.
+
+all: everything below and the report; single-asperity: the paper's fitted laws (Figs. 3-7)
+judged against FE sweeps, the BEM as cross-check; rough-surface: Figs. 9-13, their verdicts, the
+paper's law against the solved law. Curves are solved once and stored ($ADHESION_CACHE)."""
 
 import json
 import sys
+import time
 from dataclasses import asdict
 from pathlib import Path
 
@@ -18,6 +23,8 @@ from .report import PENDING, render
 from .rough_surface import COMPARISON_MU
 from .rough_surface import run as run_rough_surface
 from .rough_surface import section as rough_section
+from .single_asperity import run as run_single_asperity
+from .single_asperity import section as single_section
 
 PROG = "python -m validation"
 FILES = (
@@ -25,6 +32,11 @@ FILES = (
     ("paper_laws.png", "figure of those laws beside JKR, DMT and Maugis-Dugdale"),
     ("report.md", "closed-form checks with verdicts, rough-surface claims, and what is not yet "
                   "judged"),
+)
+SINGLE_FILES = (
+    ("single_asperity/report.md", "the paper's single-asperity laws judged against the FE"),
+    ("single_asperity/report.json", "verdicts, mu_onset, refit with 95% intervals, FE rows"),
+    ("single_asperity/fig3.png ... fig7.png, hysteresis.png", "Figs. 3-7 and the loops"),
 )
 ROUGH_FILES = (
     ("rough_surface.json", "Figs. 9-13 data (paper's laws, GW), xi collapse, omega sensitivity, "
@@ -41,21 +53,33 @@ def build_parser():
     everything = commands.add_parser("all", help="regenerate the figures and the report")
     everything.add_argument("--out", type=Path, default=Path("out"), help="output folder")
     everything.add_argument("--json", action="store_true", help="print a JSON summary")
+    single = commands.add_parser("single-asperity",
+                                 help="Figs. 3-7: the paper's fitted laws judged against FE sweeps")
     rough = commands.add_parser("rough-surface", help="Figs. 9-13, verdicts, paper vs solved law")
-    rough.add_argument("--out", type=Path, default=Path("out"), help="output folder")
-    rough.add_argument("--json", action="store_true", help="print a JSON summary")
+    for command in (single, rough):
+        command.add_argument("--out", type=Path, default=Path("out"), help="output folder")
+        command.add_argument("--json", action="store_true", help="print a JSON summary")
+    for command in (everything, single):
+        command.add_argument("--method", choices=("fem", "bem"), default="fem",
+                             help="solver judged in the single-asperity sweep (default: fem; "
+                                  "the other method is its cross-check)")
+        command.add_argument("--jobs", type=int, help="worker processes (default: one per core)")
+        command.add_argument("--scheduler", metavar="ADDRESS",
+                             help="run the sweeps on this Dask scheduler (extra 'cluster')")
+    single.add_argument("--accuracy", choices=tuple(PRESETS), default="default",
+                        help="accuracy of the swept curves (default)")
     for command in (everything, rough):
         command.add_argument("--compare-mu", type=float, nargs="+", default=list(COMPARISON_MU),
                              help="mu of the paper-law vs BEM-law check (default: %(default)s)")
-        command.add_argument("--accuracy", choices=tuple(PRESETS),
-                             default="default", help="accuracy of the BEM curves (default)")
+        command.add_argument("--accuracy", choices=tuple(PRESETS), default="default",
+                             help="accuracy of the solved curves (default)")
         command.add_argument("--refit-method", choices=("bem", "fem"), default="bem",
                              help="solver of the curves the constants are refitted from (bem: "
                                   "fast; fem: slow the first time, then stored)")
     return parser
 
 
-def _step(i, text, total=5):
+def _step(i, text, total=7):
     print(f"[{i}/{total}] {text}", file=sys.stderr, flush=True)
 
 
@@ -68,6 +92,16 @@ def _rough(out, args, first_step, total):
     return rough, {"rough_surface": rough["verdicts"], "law_comparison": rough["law_comparison"]}
 
 
+def _single(out, args, first_step, total):
+    """Run the single-asperity stage; returns (its summary, the part for the overall one)."""
+    steps = iter(range(first_step, first_step + 2))
+    single = run_single_asperity(out, method=args.method, accuracy=args.accuracy, jobs=args.jobs,
+                                 scheduler=args.scheduler,
+                                 step=lambda text: _step(next(steps), text, total))
+    return single, {"single_asperity": single["verdicts"], "mu_onset": single["mu_onset"],
+                    "refit": single["refit"]}
+
+
 def _check_out(out):
     if out.exists() and not out.is_dir():
         raise InputError(f"--out must be a folder; {out} is a file")
@@ -76,6 +110,7 @@ def _check_out(out):
 def run_all(out, command, args):
     """Write every output that exists so far into `out`; return a summary dict."""
     _check_out(out)
+    start = time.perf_counter()
     _step(1, "paper laws over mu (closed forms, Maugis-Dugdale)")
     rows = law_table()
     table = {"method": "closed-form laws with the paper's constants (exact evaluation)",
@@ -85,18 +120,34 @@ def run_all(out, command, args):
     save_figure(plot_laws(rows), out / "paper_laws.png")
     _step(3, "closed-form checks")
     checks = closed_form_checks()
-    rough, rough_summary = _rough(out, args, 4, 5)
-    write_atomic(out / "report.md", render(checks, FILES + ROUGH_FILES, command,
-                                           rough_section(rough)))
-    return {"out": str(out), "files": [name for name, _ in FILES + ROUGH_FILES],
-            "checks": [c.as_dict() for c in checks], **rough_summary,
-            "not_yet_available": [{"item": i, "needs": n} for i, n in PENDING]}
+    single, single_summary = _single(out, args, 4, 7)
+    rough, rough_summary = _rough(out, args, 6, 7)
+    files = FILES + SINGLE_FILES + ROUGH_FILES
+    wall_s = time.perf_counter() - start
+    write_atomic(out / "report.md", render(checks, files, command, rough_section(rough),
+                                           single_section(single), wall_s=wall_s))
+    return {"out": str(out), "files": [name for name, _ in files],
+            "checks": [c.as_dict() for c in checks], **single_summary, **rough_summary,
+            "not_yet_available": [{"item": i, "needs": n} for i, n in PENDING],
+            "wall_s": wall_s}
 
 
 def main(argv=None):
     args = build_parser().parse_args(argv)
-    positive("--compare-mu", args.compare_mu)  # before anything is written
+    if args.command != "single-asperity":
+        positive("--compare-mu", args.compare_mu)  # before anything is written
     command = " ".join([PROG] + (sys.argv[1:] if argv is None else list(argv)))
+    if args.command == "single-asperity":
+        _check_out(args.out)
+        single, summary = _single(args.out, args, 1, 2)
+        summary = {"out": str(args.out), "files": [name for name, _ in SINGLE_FILES], **summary}
+        if args.json:
+            dump_json(summary)
+        else:
+            held = [v["holds"] for v in single["verdicts"]]
+            print(f"wrote {args.out}/single_asperity/: {held.count(True)} claims hold, "
+                  f"{held.count(False)} fail (see report.md)")
+        return 0
     if args.command == "rough-surface":
         _check_out(args.out)
         summary = {"out": str(args.out), "files": [name for name, _ in ROUGH_FILES],
@@ -118,7 +169,11 @@ def main(argv=None):
         rough = [r["verdict"] for r in summary["rough_surface"]]
         print(f"rough-surface claims: {rough.count('holds')} hold, {rough.count('fails')} fail, "
               f"{rough.count('note')} notes (see report.md)")
-        print(f"not yet available: {len(PENDING)} items awaiting the verification stage")
+        single = [v["holds"] for v in summary["single_asperity"]]
+        print(f"single-asperity claims: {single.count(True)} hold, {single.count(False)} fail "
+              f"(see report.md)")
+        if PENDING:
+            print(f"not yet available: {len(PENDING)} items (see report.md)")
     return 0
 
 

@@ -1,5 +1,5 @@
-"""The verification report: a provenance line, the closed-form checks, the rough-surface section
-and the items that await the FE sweeps."""
+"""The verification report: a provenance line, the closed-form checks, the single-asperity and
+rough-surface sections, and the paper's items not yet judged."""
 
 import os
 import platform
@@ -12,17 +12,10 @@ import scipy
 
 import fem_asperity
 
-#: Items of the paper not yet judged, with the roadmap stage that will judge them.
-FE_SWEEP = "FE sweep over mu (verification stage)"
+#: Items of the paper not yet judged, with what would judge them.
 PENDING = (
-    ("Fig. 3 / eq. 6: a_c at maximum adhesion vs mu", FE_SWEEP),
-    ("Fig. 4 / eq. 7: delta_oc vs mu (no jump-in)", FE_SWEEP),
-    ("Fig. 5 / eq. 9: force vs separation, mu = 0.091-0.425", FE_SWEEP),
-    ("Fig. 6 (caption lost) / eqs. 12-13: jump-in gap and separation", FE_SWEEP),
-    ("Fig. 7 / eqs. 16-19: Hertz-like force and area after contact", FE_SWEEP),
-    ("eqs. 15 -> 2: the force lands on P_off at jump-in", FE_SWEEP),
-    ("refit of the eight constants against the FE itself (here: against the BEM, which agrees "
-     "with the FE within its error estimate)", FE_SWEEP),
+    ("eqs. 16-19 beyond the figures: the Hertz-like laws after contact judged by a verdict "
+     "(Fig. 7 shows them against Hertz)", "a tolerance on the distance from Hertz"),
 )
 #: The package's folder: its git checkout, if any, names the commit in the report.
 HERE = Path(__file__).resolve().parent
@@ -72,12 +65,17 @@ def provenance(command):
             f"commit {git_commit()}, {now}, on {machine()}.")
 
 
-def render(checks, files, command, rough=""):
-    """The report as Markdown text."""
+def render(checks, files, command, rough="", single="", wall_s=None):
+    """The report as Markdown text; `wall_s`: how long the run that wrote it took."""
+    took = [] if wall_s is None else [
+        "", f"This run took {wall_s:.0f} s (curves not in the store were solved; a second run "
+            "reads them)."]
     lines = [
         provenance(command),
+        *took,
         "",
-        "# Verification report: Song & Komvopoulos, adhesive rough-surface contact",
+        "# Verification report: Song & Komvopoulos, adhesive contact of an elastic half-space "
+        "with a rigid rough surface",
         "",
         "## Closed-form checks (no FE)",
         "",
@@ -91,6 +89,7 @@ def render(checks, files, command, rough=""):
         tol = "-" if c.tol is None else f"{c.tol:g}"
         lines.append(f"| {c.claim} | {c.source} | {c.found:.6g} | {c.expected:.6g} | {tol} "
                      f"| {c.verdict} | {c.how} |")
+    lines += ["", single] if single else []
     lines += ["", rough] if rough else []
     lines += ["", "## Not yet judged", "", "| item | needs |", "|---|---|"]
     lines += [f"| {item} | {needs} |" for item, needs in PENDING]
