@@ -52,19 +52,21 @@ def dump_json(obj):
     print(json.dumps(obj, indent=2, allow_nan=False))
 
 
-def _cell(value):
-    if value is None:
-        return "-"
+def format_cell(value, *, missing="-", words=("yes", "no"), digits=5):
+    """A table or CSV cell: `missing` for None and non-finite floats, `words` for True/False,
+    floats to `digits` significant digits."""
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return missing
     if isinstance(value, bool):
-        return "yes" if value else "no"
+        return words[0] if value else words[1]
     if isinstance(value, float):
-        return f"{value:.5g}" if math.isfinite(value) else str(value)
+        return f"{value:.{digits}g}"
     return str(value)
 
 
 def print_table(rows, columns):
     """Print dict rows as an aligned plain-text table with the given column keys."""
-    cells = [[_cell(row[c]) for c in columns] for row in rows]
+    cells = [[format_cell(row[c]) for c in columns] for row in rows]
     widths = [max(len(c), *(len(r[i]) for r in cells)) for i, c in enumerate(columns)]
     print("  ".join(c.rjust(w) for c, w in zip(columns, widths)))
     for r in cells:

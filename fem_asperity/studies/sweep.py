@@ -15,7 +15,6 @@ and sweep.json (units of every column, the inputs and the solver revision).
 import csv
 import io
 import json
-import math
 import multiprocessing
 import os
 import time
@@ -27,6 +26,7 @@ import numpy as np
 
 from ..path.curve import Curve
 from ..plumbing.checks import in_range
+from ..plumbing.cli import format_cell
 from ..plumbing.errors import InputError
 from ..plumbing.files import staged_folder, write_atomic
 from ..plumbing.version import __version__
@@ -146,16 +146,6 @@ def _long(mu, name, curve: Curve):
             for i in range(len(curve))]
 
 
-def _cell(value):
-    if value is None:
-        return ""
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, float):
-        return f"{value:.10g}" if math.isfinite(value) else ""
-    return str(value).replace("\n", " ")
-
-
 def _csv(rows, columns=None):
     """CSV text of dict rows (missing values empty); text fields quoted where needed."""
     columns = columns or (list(rows[0]) if rows else ["mu"])
@@ -163,7 +153,8 @@ def _csv(rows, columns=None):
     writer = csv.writer(out, lineterminator="\n")
     writer.writerow(columns)
     for row in rows:
-        writer.writerow([_cell(row[c]) for c in columns])
+        writer.writerow([format_cell(row[c], missing="", words=("true", "false"), digits=10)
+                         for c in columns])
     return out.getvalue()
 
 
