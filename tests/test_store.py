@@ -20,3 +20,18 @@ def test_a_changed_solver_solves_afresh(tmp_path, monkeypatch):
     changed = store.stored_curve(0.2, accuracy="draft", cache=tmp_path)
     assert len(solved) == 2 and changed.folder != first.folder
     assert changed.events.p_off == first.events.p_off
+
+
+def test_the_onset_is_computed_once_then_read_from_the_store(tmp_path, monkeypatch):
+    import fem_asperity.studies.onset as onset
+
+    computed = []
+
+    def fake_onset(*, method, accuracy):
+        computed.append((method, accuracy))
+        return onset.Onset(0.697, 0.696, 0.698, method, accuracy, evaluations=9, wall_s=1.0)
+
+    monkeypatch.setattr(onset, "jump_in_onset", fake_onset)
+    first = onset.stored_onset(method="fem", accuracy="draft", cache=tmp_path)
+    again = onset.stored_onset(method="fem", accuracy="draft", cache=tmp_path)
+    assert computed == [("fem", "draft")] and again == first

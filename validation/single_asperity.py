@@ -20,7 +20,7 @@ from scipy.stats import t as student
 
 from fem_asperity.closed_forms.laws import PAPER_LAWS
 from fem_asperity.plumbing.files import write_atomic
-from fem_asperity.studies.onset import jump_in_onset
+from fem_asperity.studies.onset import stored_onset
 from fem_asperity.studies.store import stored_curve
 from fem_asperity.studies.sweep import sweep
 
@@ -199,7 +199,7 @@ def run(out, *, method="fem", accuracy="default", jobs=None, scheduler=None, ste
     bem = sweep(SWEEP_MU, method="bem", accuracy=accuracy, error_estimate=False, jobs=jobs,
                 scheduler=scheduler)
     step("single asperity: onset of jump-in, refit with 95% intervals, verdicts, figures")
-    onset = jump_in_onset(method=method, accuracy=accuracy)
+    onset = stored_onset(method=method, accuracy=accuracy)
     rows = _retry_missed_jumps(_rows(fe), onset.mu_onset, method, accuracy)
     bem_rows = _rows(bem)
     refit, deviations = refit_with_intervals(rows, onset.mu_onset)

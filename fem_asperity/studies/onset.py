@@ -11,8 +11,10 @@ with 0.02 rad by 2e-5 (μ = 0.69-0.70);
 test_bem_curve.py::test_fold_margin_changes_sign_between_069_and_070.
 """
 
+import json
 import time
 from dataclasses import dataclass, replace
+from pathlib import Path
 
 import numpy as np
 from scipy.optimize import brentq
@@ -21,8 +23,10 @@ from threadpoolctl import threadpool_limits
 from ..path.continuation import trace
 from ..path.curve import parabola_vertex
 from ..plumbing.errors import InputError
+from ..plumbing.files import write_atomic
 from ..solver.presets import discretisation
 from ..solver.solve import PATH_BLAS_THREADS
+from .store import cache_dir, code_revision
 
 
 def fold_margin(mu, *, method="bem", accuracy="default"):
@@ -79,3 +83,15 @@ def jump_in_onset(*, method="bem", accuracy="default", bracket=(0.2, 1.0), xtol=
     root = brentq(margin, lo, hi, xtol=xtol, rtol=1e-12)
     return Onset(mu_onset=root, lo=root - xtol, hi=root + xtol, method=method, accuracy=accuracy,
                  evaluations=len(calls), wall_s=time.perf_counter() - start)
+
+
+def stored_onset(*, method="bem", accuracy="default", cache=None):
+    """`jump_in_onset` over the default bracket, read from the store or computed and stored
+    (keyed by the code of this module and all it imports)."""
+    name = f"onset-{method}-{accuracy}-{code_revision(__name__)}.json"
+    path = Path(cache or cache_dir()) / name
+    if path.exists():
+        return Onset(**json.loads(path.read_text()))
+    onset = jump_in_onset(method=method, accuracy=accuracy)
+    write_atomic(path, json.dumps(onset.records(), indent=1) + "\n")
+    return onset

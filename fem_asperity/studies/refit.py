@@ -8,7 +8,7 @@ functional form, by least squares:
 - c_oc (eq. 7, δ̄oc = 1 + c_oc μ) and c_star (eq. 10, δ̄o* = 1 + c_star μ^1.5): through the origin,
   on the curves without jump-in;
 - x_0, x_1 (eq. 12, x̄oc = x_0 + x_1 μ^0.4): linear in μ^0.4, on the curves with jump-in;
-- mu_jump: the measured onset of jump-in (`onset.jump_in_onset`).
+- mu_jump: the measured onset of jump-in (`onset.stored_onset`).
 
 `Refit` keeps the constants, the RMS and largest residual of each fit and the μ used.
 """
@@ -22,7 +22,7 @@ from scipy.optimize import minimize_scalar
 
 from ..closed_forms.laws import AsperityLaws
 from ..plumbing.files import write_atomic
-from .onset import jump_in_onset
+from .onset import stored_onset
 from .store import cache_dir, code_revision, stored_curve
 
 #: Tabor parameters of the refit: both regimes, on uniform BEM grids (below MU_TRACKING), where a
@@ -78,7 +78,7 @@ def refit(mus=REFIT_MU, *, method="bem", accuracy="default", progress=None):
     _, c_star, rst = _line(mu[~jump] ** 1.5, col["delta_o_star"][~jump] - 1.0,
                            through_origin=True)
     x_0, x_1, rx = _line(mu[jump] ** 0.4, col["x_oc"][jump])
-    onset = jump_in_onset(method=method, accuracy=accuracy).mu_onset
+    onset = stored_onset(method=method, accuracy=accuracy).mu_onset
     laws = AsperityLaws(c_off=float(c_off), c_a=float(c_a), mu_a=float(mu_a), c_oc=c_oc,
                         c_star=c_star, x_0=x_0, x_1=x_1, mu_jump=float(onset))
     residuals = {"p_off (eq. 2)": _stats(_wu(mu, c_off) - col["p_off"]),
