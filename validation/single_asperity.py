@@ -24,7 +24,7 @@ from fem_asperity.studies.onset import stored_onset
 from fem_asperity.studies.store import stored_curve
 from fem_asperity.studies.sweep import sweep
 
-from .single_figures import save_figures
+from .single_figures import RADIUS_RATIO, save_figures
 
 #: FE sweep: both regimes, denser near the onset of jump-in (≈ 0.7); the μ of the paper's Figs.
 #: 5 and 7 (0.091, 0.425, 1.971) and the hysteresis loops (0.5, 1, 2, 5) included.
@@ -248,7 +248,10 @@ def section(summary):
              "with its error estimate; the BEM at the same mu as the independent cross-check. "
              f"A fitted law holds where it stays within {FIT_TOLERANCE:.0%} of the FE over its "
              f"range; a constant of the text within {CONSTANT_TOLERANCE:.0%} of the measured one. "
-             "Figures: `single_asperity/fig3.png` ... `fig7.png`, `hysteresis.png`.", "",
+             "Figures: `single_asperity/fig3.png` ... `fig7.png`, `hysteresis.png`. Fig. 7 is "
+             f"drawn at R/eps = {RADIUS_RATIO:g}: its axes scale as (eps/R)^(3/2) and eps/R, so "
+             "another R/eps slides every point along the Hertz curve without changing its "
+             "distance from it.", "",
              "| claim | paper | measured | error | verdict |", "|---|---|---|---|---|"]
     for v in summary["verdicts"]:
         measured = f"{v['measured']:.4g}" if isinstance(v["measured"], float) else v["measured"]
