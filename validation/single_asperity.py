@@ -250,8 +250,8 @@ def section(summary):
              f"range; a constant of the text within {CONSTANT_TOLERANCE:.0%} of the measured one. "
              "Figures: `single_asperity/fig3.png` ... `fig7.png`, `hysteresis.png`. Fig. 7 is "
              f"drawn at R/eps = {RADIUS_RATIO:g}: its axes scale as (eps/R)^(3/2) and eps/R, so "
-             "another R/eps slides every point along the Hertz curve without changing its "
-             "distance from it.", "",
+             "another R/eps moves every point along its own curve y = c x^(3/2) (area: y = c x), "
+             "keeping its ratio to Hertz.", "",
              "| claim | paper | measured | error | verdict |", "|---|---|---|---|---|"]
     for v in summary["verdicts"]:
         measured = f"{v['measured']:.4g}" if isinstance(v["measured"], float) else v["measured"]
