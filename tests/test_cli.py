@@ -82,8 +82,8 @@ def test_validation_all_writes_its_files(tmp_path):
         "law_comparison.png", "paper_laws.json", "paper_laws.png", "report.md",
         "rough_surface.json", "rough_surface.md", "rough_surface.png", "single_asperity"]
     assert sorted(p.name for p in (out / "single_asperity").iterdir()) == [
-        "fig3.png", "fig4.png", "fig5.png", "fig6.png", "fig7.png", "hysteresis.png",
-        "report.json", "report.md"]
+        "fields_after_jump_in.png", "fields_after_jump_in.vtu", "fig3.png", "fig4.png",
+        "fig5.png", "fig6.png", "fig7.png", "hysteresis.png", "report.json", "report.md"]
     single = json.loads((out / "single_asperity" / "report.json").read_text())
     assert set(single["refit"]) == {"eq2_coeff", "eq6_coeff", "eq6_threshold", "eq7_slope",
                                     "eq10_coeff", "eq12_a", "eq12_b"}

@@ -37,6 +37,8 @@ SINGLE_FILES = (
     ("single_asperity/report.md", "the paper's single-asperity laws judged against the FE"),
     ("single_asperity/report.json", "verdicts, mu_onset, refit with 95% intervals, FE rows"),
     ("single_asperity/fig3.png ... fig7.png, hysteresis.png", "Figs. 3-7 and the loops"),
+    ("single_asperity/fields_after_jump_in.png, .vtu",
+     "sigma_zz in the FE solid after the jump-in"),
 )
 ROUGH_FILES = (
     ("rough_surface.json", "Figs. 9-13 data (paper's laws, GW), xi collapse, omega sensitivity, "

@@ -20,6 +20,8 @@ from scipy.stats import t as student
 
 from fem_asperity.closed_forms.laws import PAPER_LAWS
 from fem_asperity.plumbing.files import write_atomic
+from fem_asperity.solver.output import state_index, write_fields
+from fem_asperity.solver.solve import solve_curve
 from fem_asperity.studies.onset import stored_onset
 from fem_asperity.studies.store import stored_curve
 from fem_asperity.studies.sweep import sweep
@@ -35,6 +37,8 @@ SWEEP_MU = (0.05, 0.07, 0.091, 0.12, 0.16, 0.19, 0.25, 0.3, 0.35, 0.425, 0.5, 0.
 FIT_TOLERANCE = 0.05
 #: A constant of the text (onset, transition) holds within this fraction of the measured value.
 CONSTANT_TOLERANCE = 0.1
+#: μ of the σ_zz picture just after the jump-in: well inside the jump-in regime, a second's FE.
+FIELD_MU = 1.0
 #: A loop integral below this is rounding (the two paths coincide without jumps).
 LOOP_ROUNDING = 1e-12
 #: The accuracy at which a curve that misses its jump-in is solved again.
@@ -189,6 +193,15 @@ def hysteresis(curve):
     return float(loop) if loop > LOOP_ROUNDING else 0.0
 
 
+def fields_after_jump_in(folder, accuracy):
+    """fields_after_jump_in.vtu/.png: the FE solid at FIELD_MU in the state the jump-in lands
+    on, coloured by σ_zz (in Δγ/ε). Solved afresh (the store keeps curves, not solids)."""
+    result = solve_curve(FIELD_MU, method="fem", accuracy=accuracy, error_estimate=False)
+    jump = result.events.jump_in
+    index = state_index(result.equilibrium, jump.delta, jump.p_after)
+    return write_fields(result, folder, "after_jump_in", index)
+
+
 def run(out, *, method="fem", accuracy="default", jobs=None, scheduler=None, step=print):
     """Sweep, refit, judge and draw; write out/single_asperity/{report.md, report.json, figures}.
     Returns the summary (the JSON)."""
@@ -207,6 +220,7 @@ def run(out, *, method="fem", accuracy="default", jobs=None, scheduler=None, ste
     found = verdicts(rows, onset.mu_onset, deviations, transition)
     loops = {f"{r['mu']:g}": hysteresis(r["curve"]) for r in rows if r["mu"] in (0.5, 1, 2, 5)}
     figures = save_figures(folder, rows, bem_rows, refit, onset.mu_onset, loops)
+    figures += fields_after_jump_in(folder, accuracy)
     summary = {"method": method, "accuracy": accuracy, "mu": list(SWEEP_MU),
                "mu_onset": onset.mu_onset, "onset": asdict(onset), "transition_mu": transition,
                "verdicts": found, "refit": refit, "deviations": deviations,
@@ -248,7 +262,9 @@ def section(summary):
              "with its error estimate; the BEM at the same mu as the independent cross-check. "
              f"A fitted law holds where it stays within {FIT_TOLERANCE:.0%} of the FE over its "
              f"range; a constant of the text within {CONSTANT_TOLERANCE:.0%} of the measured one. "
-             "Figures: `single_asperity/fig3.png` ... `fig7.png`, `hysteresis.png`. Fig. 7 is "
+             "Figures: `single_asperity/fig3.png` ... `fig7.png`, `hysteresis.png`, and "
+             f"`fields_after_jump_in.png` (sigma_zz in the FE solid at mu = {FIELD_MU:g} just "
+             "after the jump-in; `.vtu` for ParaView). Fig. 7 is "
              f"drawn at R/eps = {RADIUS_RATIO:g}: its axes scale as (eps/R)^(3/2) and eps/R, so "
              "another R/eps moves every point along its own curve y = c x^(3/2) (area: y = c x), "
              "keeping its ratio to Hertz.", "",

@@ -39,7 +39,7 @@ def plot_curve(result, path):
     return save_figure(fig, path)
 
 
-def _state_index(curve, delta, p):
+def state_index(curve, delta, p):
     """Index of the equilibrium-curve point nearest to (δ̄o, P̄)."""
     return int(np.argmin(np.hypot(curve.delta - delta, curve.p - p)))
 
@@ -116,5 +116,5 @@ def write_all(result, folder):
             for label, delta, p in (("p_max", ev.delta_oc, ev.p_max),
                                     ("p_off", ev.delta_off, ev.p_off)):
                 names += [p.name for p in write_fields(result, stage, label,
-                                                       _state_index(eq, delta, p))]
+                                                       state_index(eq, delta, p))]
     return [folder / name for name in names]
