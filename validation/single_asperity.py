@@ -26,7 +26,7 @@ from fem_asperity.studies.onset import stored_onset
 from fem_asperity.studies.store import stored_curve
 from fem_asperity.studies.sweep import sweep
 
-from .single_figures import RADIUS_RATIO, save_figures
+from .single_figures import LOOP_MU, RADIUS_RATIO, save_figures
 
 #: FE sweep: both regimes, denser near the onset of jump-in (≈ 0.7); the μ of the paper's Figs.
 #: 5 and 7 (0.091, 0.425, 1.971) and the hysteresis loops (0.5, 1, 2, 5) included.
@@ -218,8 +218,9 @@ def run(out, *, method="fem", accuracy="default", jobs=None, scheduler=None, ste
     refit, deviations = refit_with_intervals(rows, onset.mu_onset)
     transition = _transition(rows, onset.mu_onset)
     found = verdicts(rows, onset.mu_onset, deviations, transition)
-    loops = {f"{r['mu']:g}": hysteresis(r["curve"]) for r in rows if r["mu"] in (0.5, 1, 2, 5)}
-    figures = save_figures(folder, rows, bem_rows, refit, onset.mu_onset, loops)
+    loops = {f"{r['mu']:g}": hysteresis(r["curve"]) for r in rows}
+    bem_loops = {f"{r['mu']:g}": hysteresis(r["curve"]) for r in bem_rows}
+    figures = save_figures(folder, rows, bem_rows, refit, onset.mu_onset, loops, bem_loops)
     figures += fields_after_jump_in(folder, accuracy)
     summary = {"method": method, "accuracy": accuracy, "mu": list(SWEEP_MU),
                "mu_onset": onset.mu_onset, "onset": asdict(onset), "transition_mu": transition,
@@ -256,6 +257,7 @@ def cross_check(rows, bem_rows):
 
 def section(summary):
     """Markdown of the single-asperity results (also the section of out/report.md)."""
+    shown = [m for m in summary["hysteresis"] if float(m) in LOOP_MU]
     lines = ["## Single asperity (FE sweeps): the paper's fitted laws judged", "",
              f"{summary['method'].upper()} curves at '{summary['accuracy']}' accuracy over "
              f"{len(summary['mu'])} mu in [{min(summary['mu']):g}, {max(summary['mu']):g}], each "
@@ -289,10 +291,9 @@ def section(summary):
         lines.append(f"| {key} | {c['largest']:.2g} | {c['points']} | {c['beyond_estimate']} |")
     lines += ["", "### Hysteresis (beyond the paper)", "",
               "Energy dissipated over one approach and retraction, in 2 pi R dgamma eps:", "",
-              "| mu | " + " | ".join(summary["hysteresis"]) + " |",
-              "|---|" + "---|" * len(summary["hysteresis"]),
-              "| energy | " + " | ".join(f"{e:.4g}" for e in summary["hysteresis"].values())
-              + " |"]
+              "| mu | " + " | ".join(shown) + " |", "|---|" + "---|" * len(shown),
+              "| energy | " + " | ".join(f"{summary['hysteresis'][m]:.4g}" for m in shown) + " |",
+              "", "Every mu of the sweep: `report.json` (`hysteresis`), `hysteresis.png`."]
     if summary["failed"]:
         lines += ["", "Curves that failed: " + "; ".join(f"mu = {f['mu']:g}: {f['message']}"
                                                          for f in summary["failed"])]

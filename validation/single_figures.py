@@ -150,9 +150,11 @@ def fig7(rows):
     return fig
 
 
-def loops(rows, energies):
-    fig = Figure(figsize=(10, 7), layout="constrained")
-    for ax, mu in zip(fig.subplots(2, 2).flat, LOOP_MU):
+def loops(rows, energies, bem_energies):
+    """The loops at LOOP_MU and the dissipated energy against μ (FE points, BEM line)."""
+    fig = Figure(figsize=(15, 7), layout="constrained")
+    panels = fig.subplots(2, 3).flat
+    for ax, mu in zip([panels[i] for i in (0, 1, 3, 4)], LOOP_MU):
         curve = _curve_of(rows, mu)
         ax.plot(curve.approach.delta, curve.approach.p, "-", color="tab:blue", label="approach")
         ax.plot(curve.retraction.delta, curve.retraction.p, "-", color="tab:red",
@@ -166,15 +168,24 @@ def loops(rows, energies):
                                                    else "0 (no jumps)"))
         ax.grid(alpha=0.3)
     fig.axes[0].legend(fontsize=8)
+    energy = panels[2]
+    energy.plot([float(m) for m in energies], list(energies.values()), "o", color="k", label="FE")
+    energy.plot([float(m) for m in bem_energies], list(bem_energies.values()), "-",
+                color="tab:blue", lw=1, label="BEM")
+    energy.set(xscale="log", xlabel=r"Tabor parameter $\mu$",
+               ylabel=r"dissipated energy / ($2\pi R\Delta\gamma\,\varepsilon$)",
+               title="energy of the loop against μ")
+    energy.legend(fontsize=8)
+    fig.delaxes(panels[5])
     fig.suptitle("Approach and retraction under displacement control (FE)")
     return fig
 
 
-def save_figures(folder, rows, bem, refit, onset, energies):
+def save_figures(folder, rows, bem, refit, onset, energies, bem_energies):
     """Write fig3.png ... fig7.png and hysteresis.png into `folder`; their paths."""
     figures = {"fig3": fig3(rows, bem, refit), "fig4": fig4(rows, bem, refit, onset),
                "fig5": fig5(rows, bem), "fig6": fig6(rows, bem, refit, onset),
-               "fig7": fig7(rows), "hysteresis": loops(rows, energies)}
+               "fig7": fig7(rows), "hysteresis": loops(rows, energies, bem_energies)}
     paths = []
     for name, fig in figures.items():
         for ax in fig.axes:
