@@ -123,3 +123,17 @@ def test_energy_descent_lands_where_newton_on_the_traced_branch_does():
         w, _, converged = land(surface, traced.states[beyond], jump.delta)
         assert converged
         assert surface.force(w, jump.delta) == pytest.approx(jump.p_after, rel=1e-8)
+
+
+def test_a_curve_above_the_onset_that_misses_its_jump_is_refined_until_it_jumps():
+    """At mu = 0.7 (onset 0.697) the BEM `default` grid misses the shallow fold; the solve
+    notices (mu above the onset, no jump-in) and refines once."""
+    from fem_asperity.solver.presets import discretisation
+
+    missed = solve_discretised(0.7, discretisation(0.7, method="bem"))
+    assert missed.events.jump_in is None  # the grid alone misses it
+    result = solve_curve(0.7, method="bem", error_estimate=False)
+    assert result.events.jump_in is not None and result.status == "ok"
+    assert result.accuracy == "default/2" and "refined 1 time" in result.message
+    below = solve_curve(0.69, method="bem", error_estimate=False)  # no jump to miss below
+    assert below.events.jump_in is None and below.accuracy == "default"

@@ -23,7 +23,6 @@ from fem_asperity.plumbing.files import write_atomic
 from fem_asperity.solver.output import state_index, write_fields
 from fem_asperity.solver.solve import solve_curve
 from fem_asperity.studies.onset import stored_onset
-from fem_asperity.studies.store import stored_curve
 from fem_asperity.studies.sweep import sweep
 
 from .single_figures import LOOP_MU, RADIUS_RATIO, save_figures
@@ -41,8 +40,6 @@ CONSTANT_TOLERANCE = 0.1
 FIELD_MU = 1.0
 #: A loop integral below this is rounding (the two paths coincide without jumps).
 LOOP_ROUNDING = 1e-12
-#: The accuracy at which a curve that misses its jump-in is solved again.
-RETRY_ACCURACY = "fine"
 
 
 def _law_fits():
@@ -168,23 +165,6 @@ def _rows(result):
     return rows
 
 
-def _retry_missed_jumps(rows, onset, method, accuracy):
-    """Curves above the onset must jump in; one that does not is solved again at
-    RETRY_ACCURACY (its row says so), and marked 'missed_jump' if it still does not."""
-    for k, row in enumerate(rows):
-        if row["jump_in"] or row["mu"] <= onset:
-            continue
-        finer = stored_curve(row["mu"], method=method, accuracy=RETRY_ACCURACY,
-                             error_estimate=True)
-        status = "ok" if finer.events.jump_in else "missed_jump"
-        rows[k] = {**row, **finer.events.records(), "status": status,
-                   "x_after": finer.events.jump_in.x_after if finer.events.jump_in else None,
-                   "error_estimate": finer.error_estimate, "curve": finer,
-                   "note": f"no jump-in at '{accuracy}' above the onset: solved at "
-                           f"'{RETRY_ACCURACY}'"}
-    return rows
-
-
 def hysteresis(curve):
     """Energy dissipated over one approach + retraction, ∮ P̄ dδ̄o around the loop, in
     2πRΔγ·ε (jumps are at fixed δ̄o and add nothing; the two paths share their ends)."""
@@ -213,7 +193,7 @@ def run(out, *, method="fem", accuracy="default", jobs=None, scheduler=None, ste
                 scheduler=scheduler)
     step("single asperity: onset of jump-in, refit with 95% intervals, verdicts, figures")
     onset = stored_onset(method=method, accuracy=accuracy)
-    rows = _retry_missed_jumps(_rows(fe), onset.mu_onset, method, accuracy)
+    rows = _rows(fe)
     bem_rows = _rows(bem)
     refit, deviations = refit_with_intervals(rows, onset.mu_onset)
     transition = _transition(rows, onset.mu_onset)

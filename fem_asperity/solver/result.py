@@ -13,9 +13,10 @@ from ..solids.operator import ElasticSurface
 #: Values of `CurveResult.status`, from the best to the worst news.
 #: ok: no more folds than one jump-in and one jump-out, the estimate (if asked for) obtained and
 #: the tolerance (if one was set) met. no_estimate: the coarser solve of the error estimate failed.
-#: ripples: more folds than two, the sign of a surface mesh too coarse for μ. tolerance_not_met:
+#: ripples: more folds than two, the sign of a surface mesh too coarse for μ. missed_jump: above
+#: the onset of jump-in, yet no jump-in found on any refinement tried. tolerance_not_met:
 #: `solve_to_tolerance` ran out of levels.
-STATUSES = ("ok", "no_estimate", "ripples", "tolerance_not_met")
+STATUSES = ("ok", "no_estimate", "ripples", "missed_jump", "tolerance_not_met")
 
 
 def worst_status(*statuses):
