@@ -19,6 +19,7 @@ import multiprocessing
 import os
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -176,20 +177,43 @@ def solve_for_sweep(mu, method, accuracy, error_estimate):
     return replace(result, model=None)
 
 
-def _local_jobs(jobs, todo, args):
-    """Submit the curves to `jobs` worker processes; yield (μ, result or exception)."""
+class WorkerDied(RuntimeError):
+    """The worker process solving a μ ended without a result (killed, out of memory, crashed)."""
+
+
+def _pool_jobs(jobs, todo, args, job):
+    """Run `job(μ, *args)` for each μ of `todo` in `jobs` fresh processes; yield (μ, result),
+    then return the μ whose results were lost because a worker died (the pool breaks)."""
     # Fresh interpreters (spawn): forking a process that runs BLAS and progress threads can
     # deadlock, and Python deprecates it.
     context = multiprocessing.get_context("spawn")
+    lost = []
     with ProcessPoolExecutor(max_workers=jobs, mp_context=context) as pool:
-        futures = {pool.submit(solve_for_sweep, mu, *args): mu for mu in todo}
+        futures = {pool.submit(job, mu, *args): mu for mu in todo}
         try:
             for future in as_completed(futures):
-                yield futures[future], future.result()
+                try:
+                    result = future.result()
+                except BrokenProcessPool:
+                    lost.append(futures[future])
+                    continue
+                yield futures[future], result
         except BaseException:  # Ctrl-C: stop waiting; what is stored stays stored
             for future in futures:
                 future.cancel()
             raise
+    return lost
+
+
+def _local_jobs(jobs, todo, args, job=solve_for_sweep):
+    """Submit the curves to `jobs` worker processes; yield (μ, result or exception). When a
+    worker dies, the pool loses every curve still running or waiting: each of those is then run
+    alone in a process of its own, so that only the μ that kills its worker is reported
+    (`WorkerDied`) and the others are solved."""
+    lost = yield from _pool_jobs(jobs, todo, args, job)
+    for mu in sorted(lost):
+        if (yield from _pool_jobs(1, [mu], args, job)):
+            yield mu, WorkerDied(f"the worker process solving mu = {mu:g} died")
 
 
 def _cluster_jobs(scheduler, todo, args):
@@ -203,7 +227,11 @@ def _cluster_jobs(scheduler, todo, args):
     with Client(scheduler) as client:
         futures = {client.submit(solve_for_sweep, mu, *args, pure=False): mu for mu in todo}
         for future in completed(list(futures)):
-            yield futures[future], future.result()
+            try:
+                result = future.result()
+            except Exception as exc:  # e.g. KilledWorker: reported in its row
+                result = exc
+            yield futures[future], result
 
 
 def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, jobs=None,
@@ -215,7 +243,8 @@ def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, jobs=No
     cache: the store's folder (default $ADHESION_CACHE). progress: callable(fraction of the
     curves to solve that are done), called as each finishes.
     """
-    mus = sorted({float(in_range("mu", m, 0.0, 1e4)) for m in np.atleast_1d(mus)})
+    # Rounded to the store's key (12 significant digits): μ that share a folder are one μ.
+    mus = sorted({float(f"{float(in_range('mu', m, 0.0, 1e4)):.12g}") for m in np.atleast_1d(mus)})
     if not mus:
         raise InputError("a sweep needs at least one mu")
     if method not in METHODS or accuracy not in PRESETS:
