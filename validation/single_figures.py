@@ -70,7 +70,8 @@ def fig4(rows, bem, refit, onset):
 
 
 def _curve_of(rows, mu):
-    return next(r["curve"] for r in rows if r["mu"] == mu)
+    """The stored curve at `mu`, or None if it failed (its panel is then left out)."""
+    return next((r["curve"] for r in rows if r["mu"] == mu), None)
 
 
 def fig5(rows, bem):
@@ -78,9 +79,13 @@ def fig5(rows, bem):
     ax = fig.subplots()
     for k, mu in enumerate(FIG5_MU):
         color = f"C{k}"
-        fe, be = _curve_of(rows, mu).approach, _curve_of(bem, mu).approach
-        ax.plot(fe.delta, fe.p, "o", ms=2.5, color=color, label=f"FE, μ = {mu:g}")
-        ax.plot(be.delta, be.p, "-", lw=0.8, color=color)
+        fe, be = _curve_of(rows, mu), _curve_of(bem, mu)
+        if fe is None:
+            continue
+        ax.plot(fe.approach.delta, fe.approach.p, "o", ms=2.5, color=color, label=f"FE, μ = {mu:g}")
+        if be is not None:
+            ax.plot(be.approach.delta, be.approach.p, "-", lw=0.8, color=color)
+        fe = fe.approach
         delta = np.linspace(max(0.9, fe.delta.min()), 4.0, 300)
         ax.plot(delta, PAPER_LAWS.force(delta, mu=mu), "--", color=color, lw=1)
     ax.set(xlim=(0.8, 4.0), ylim=(-1.1, 0.5), xlabel=r"$\bar\delta_o = \delta_o/\varepsilon$",
@@ -128,7 +133,9 @@ def fig7(rows):
     ratio = 1.0 / RADIUS_RATIO  # ε/R
     largest = 0.0
     for k, mu in enumerate(FIG7_MU):
-        row = next(r for r in rows if r["mu"] == mu)
+        row = next((r for r in rows if r["mu"] == mu), None)
+        if row is None:
+            continue
         path = row["curve"].approach
         pressed = path.delta < row["delta_oc"]
         x = (row["delta_oc"] - path.delta[pressed]) * ratio
@@ -136,7 +143,10 @@ def fig7(rows):
         force.plot(x, y, "o", ms=2.5, color=f"C{k}", label=f"FE, μ = {mu:g}")
         touching = path.delta < row["delta_o_star"]
         xa = (row["delta_o_star"] - path.delta[touching]) * ratio
-        ya = (path.area[touching] - np.pi * row["a_c"] ** 2) * ratio / np.pi
+        # The area at first contact: none without a jump-in (eq. 17), the landing's with one
+        # (eq. 19).
+        a_first = row["a_c_after"] or 0.0
+        ya = (path.area[touching] - np.pi * a_first**2) * ratio / np.pi
         area.plot(xa, ya, "o", ms=2.5, color=f"C{k}", label=f"FE, μ = {mu:g}")
         largest = max(largest, x.max(initial=0.0), xa.max(initial=0.0))
     x = np.linspace(0.0, largest, 100)
@@ -144,7 +154,8 @@ def fig7(rows):
     area.plot(x, x, "k--", label="Hertz")
     force.set(xlabel=r"$(\delta_{oc} - \delta_o)/R$", ylabel=r"$(P - P_{max})/(4E^*R^2/3)$",
               title=f"Fig. 7: force after contact (R/ε = {RADIUS_RATIO:g})")
-    area.set(xlabel=r"$(\delta_o^* - \delta_o)/R$", ylabel=r"$(A - \pi a_c^2)/\pi R^2$",
+    area.set(xlabel=r"$(\delta_o^* - \delta_o)/R$",
+             ylabel=r"$(A - \pi a_{c,*}^2)/\pi R^2$ ($a_{c,*}$: at first contact)",
              title="area after contact")
     force.legend(fontsize=8)
     return fig
@@ -156,6 +167,8 @@ def loops(rows, energies, bem_energies):
     panels = fig.subplots(2, 3).flat
     for ax, mu in zip([panels[i] for i in (0, 1, 3, 4)], LOOP_MU):
         curve = _curve_of(rows, mu)
+        if curve is None:
+            continue
         ax.plot(curve.approach.delta, curve.approach.p, "-", color="tab:blue", label="approach")
         ax.plot(curve.retraction.delta, curve.retraction.p, "-", color="tab:red",
                 label="retraction")
