@@ -1,5 +1,7 @@
 """The store of solved curves: solved once per solver revision, then read back."""
 
+import pytest
+
 import fem_asperity.studies.store as store
 
 
@@ -35,3 +37,11 @@ def test_the_onset_is_computed_once_then_read_from_the_store(tmp_path, monkeypat
     first = onset.stored_onset(method="fem", accuracy="draft", cache=tmp_path)
     again = onset.stored_onset(method="fem", accuracy="draft", cache=tmp_path)
     assert computed == [("fem", "draft")] and again == first
+
+
+def test_the_whole_curve_is_stored_apart_with_its_unstable_branch(tmp_path):
+    stable = store.stored_curve(2.0, accuracy="draft", cache=tmp_path)
+    whole = store.stored_curve(2.0, accuracy="draft", unstable_branch=True, cache=tmp_path)
+    assert whole.folder != stable.folder
+    assert stable.equilibrium.stable.all() and not whole.equilibrium.stable.all()
+    assert whole.events.p_off == pytest.approx(stable.events.p_off, rel=1e-6)

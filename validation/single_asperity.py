@@ -22,6 +22,7 @@ from fem_asperity.plumbing.files import write_atomic
 from fem_asperity.solver.output import state_index, write_fields
 from fem_asperity.solver.solve import solve_curve
 from fem_asperity.studies.onset import stored_onset
+from fem_asperity.studies.store import stored_curve
 from fem_asperity.studies.sweep import sweep
 
 from .single_figures import LOOP_MU, RADIUS_RATIO, save_figures
@@ -249,7 +250,11 @@ def run(out, *, method="fem", accuracy="default", jobs=None, scheduler=None, ste
     found = verdicts(rows, onset.mu_onset, deviations, transition)
     loops = {f"{r['mu']:g}": hysteresis(r["curve"]) for r in rows}
     bem_loops = {f"{r['mu']:g}": hysteresis(r["curve"]) for r in bem_rows}
-    figures = save_figures(folder, rows, bem_rows, refit, onset.mu_onset, loops, bem_loops)
+    whole = {mu: stored_curve(mu, method="bem", accuracy=accuracy,
+                              unstable_branch=True).equilibrium
+             for mu in LOOP_MU if mu > onset.mu_onset}
+    figures = save_figures(folder, rows, bem_rows, refit, onset.mu_onset, loops, bem_loops,
+                           whole)
     figures += fields_after_jump_in(folder, accuracy)
     summary = {"method": method, "accuracy": accuracy, "mu": list(SWEEP_MU),
                "mu_onset": onset.mu_onset, "onset": asdict(onset), "transition_mu": transition,

@@ -161,8 +161,10 @@ def fig7(rows):
     return fig
 
 
-def loops(rows, energies, bem_energies):
-    """The loops at LOOP_MU and the dissipated energy against μ (FE points, BEM line)."""
+def loops(rows, energies, bem_energies, whole):
+    """The loops at LOOP_MU with the unstable branch between the folds where `whole` (μ → the
+    BEM's whole equilibrium curve) has it, and the dissipated energy against μ (FE points, BEM
+    line)."""
     fig = Figure(figsize=(15, 7), layout="constrained")
     panels = fig.subplots(2, 3).flat
     for ax, mu in zip([panels[i] for i in (0, 1, 3, 4)], LOOP_MU):
@@ -172,6 +174,10 @@ def loops(rows, energies, bem_energies):
         ax.plot(curve.approach.delta, curve.approach.p, "-", color="tab:blue", label="approach")
         ax.plot(curve.retraction.delta, curve.retraction.p, "-", color="tab:red",
                 label="retraction")
+        if mu in whole:
+            branch = whole[mu]
+            ax.plot(branch.delta, np.where(branch.stable, np.nan, branch.p), "--", color="grey",
+                    lw=1, label="unstable branch (BEM)")
         events = curve.events
         right = max(6.0, 1.2 * (events.jump_out.delta if events.jump_out else 0.0))
         energy = energies[f"{mu:g}"]
@@ -194,11 +200,11 @@ def loops(rows, energies, bem_energies):
     return fig
 
 
-def save_figures(folder, rows, bem, refit, onset, energies, bem_energies):
+def save_figures(folder, rows, bem, refit, onset, energies, bem_energies, whole):
     """Write fig3.png ... fig7.png and hysteresis.png into `folder`; their paths."""
     figures = {"fig3": fig3(rows, bem, refit), "fig4": fig4(rows, bem, refit, onset),
                "fig5": fig5(rows, bem), "fig6": fig6(rows, bem, refit, onset),
-               "fig7": fig7(rows), "hysteresis": loops(rows, energies, bem_energies)}
+               "fig7": fig7(rows), "hysteresis": loops(rows, energies, bem_energies, whole)}
     paths = []
     for name, fig in figures.items():
         for ax in fig.axes:

@@ -36,7 +36,8 @@ COST_KEYS = ("dofs", "surface_nodes", "points", "newton_iterations", "wall_s")
 
 @dataclass(frozen=True)
 class StoredCurve:
-    """A stored curve: its approach and retraction paths (`Curve`), `Events`, the error estimate
+    """A stored curve: its approach and retraction paths and the equilibrium curve traced
+    (`Curve`; the whole curve where stored with `unstable_branch`), `Events`, the error estimate
     (None where the curve was stored without one), the solve's status and message
     (`CurveResult.status`: 'ok' unless it calls for a finer accuracy), its cost (`COST_KEYS`)
     and its folder."""
@@ -46,6 +47,7 @@ class StoredCurve:
     accuracy: str
     approach: Curve
     retraction: Curve
+    equilibrium: Curve
     events: Events
     error_estimate: dict | None
     status: str
@@ -112,11 +114,12 @@ def _events_from_dict(data):
     return Events(**{**data, **jumps})
 
 
-def curve_folder(mu, *, method, accuracy, error_estimate, cache=None):
+def curve_folder(mu, *, method, accuracy, error_estimate, unstable_branch=False, cache=None):
     """Where the curve at (`mu`, method, accuracy) of this solver revision is stored; curves with
-    and without the error estimate are kept apart (the estimate costs a second solve)."""
-    estimate = "-estimated" if error_estimate else ""
-    name = f"{method}-{accuracy}{estimate}-mu{float(mu):.12g}-{solver_revision()}"
+    and without the error estimate, and with the whole equilibrium curve (`unstable_branch`),
+    are kept apart (each costs more)."""
+    extras = ("-estimated" if error_estimate else "") + ("-whole" if unstable_branch else "")
+    name = f"{method}-{accuracy}{extras}-mu{float(mu):.12g}-{solver_revision()}"
     return Path(cache or cache_dir()) / name
 
 
@@ -142,16 +145,18 @@ def read_stored(folder):
     events = _events_from_dict(json.loads((folder / "events.json").read_text()))
     return StoredCurve(result["mu"], result["method"], result["accuracy"],
                        _read_curve(folder / "approach.csv"), _read_curve(folder / "retraction.csv"),
-                       events, result["error_estimate"], result["status"], result["message"],
+                       _read_curve(folder / "equilibrium.csv"), events, result["error_estimate"],
+                       result["status"], result["message"],
                        {key: result[key] for key in COST_KEYS}, folder)
 
 
-def stored_curve(mu, *, method="bem", accuracy="default", error_estimate=False, cache=None,
-                 progress=None):
-    """`StoredCurve` at `mu`, solved now (and stored) if not stored yet."""
+def stored_curve(mu, *, method="bem", accuracy="default", error_estimate=False,
+                 unstable_branch=False, cache=None, progress=None):
+    """`StoredCurve` at `mu`, solved now (and stored) if not stored yet; `unstable_branch`: its
+    `equilibrium` is the whole curve, unstable branches included (`solve_curve`)."""
     folder = curve_folder(mu, method=method, accuracy=accuracy, error_estimate=error_estimate,
-                          cache=cache)
+                          unstable_branch=unstable_branch, cache=cache)
     if not is_stored(folder):
         keep(solve_curve(mu, method=method, accuracy=accuracy, error_estimate=error_estimate,
-                         progress=progress), folder)
+                         unstable_branch=unstable_branch, progress=progress), folder)
     return read_stored(folder)
