@@ -10,15 +10,15 @@ closed-form asperity laws integrated over the Gaussian summit heights, eqs. 20-2
 two panels.
 
 The paper states neither ε nor R, η: the validation takes ε = 0.3 nm (so ζ = σ/ε = 6.67) and
-ω = 1 (σRη ≫ 0.019); F̄ and S̄ depend on μ, ζ and ω only. The figure needs no solver and takes
-about a second, so EXAMPLES_FAST changes nothing here. EXAMPLES_OUT names the output folder
-(default out/examples/fig9).
+ω = 1 (σRη ≫ 0.019); F̄ and S̄ depend on μ, ζ and ω only. The figure needs no solver
+(closed forms and quadrature only), so EXAMPLES_FAST changes nothing here. EXAMPLES_OUT names
+the output folder (default out/examples/fig9).
 """
 
 # %%
 # Settings and imports. `figure_data` returns the series of Figs. 9-13 as plain lists; its
 # "fig9" entry holds the d̃ grid (0 to 8 in steps of 0.05) and F̄, S̄ per μ. It computes
-# Figs. 10-13 too (about a second in all): the validation stage has no Fig.-9-only entry point.
+# Figs. 10-13 too: the validation stage has no Fig.-9-only entry point.
 
 import csv
 import io

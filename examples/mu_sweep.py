@@ -15,10 +15,10 @@ as CSV. EXAMPLES_FAST=1 solves three μ at draft accuracy; EXAMPLES_OUT names th
 # %%
 # Settings. The full sweep spans both regimes of the paper (continuous approach below μ = 0.5,
 # jump-in above) and stops at μ = 5: from μ = 6 on the boundary-integral grids follow the contact
-# edge and a curve takes tens of seconds. At "draft" accuracy μ = 3 already ripples (spurious
+# edge, a costlier solve (benchmarks/results/curves.md). At "draft" accuracy μ = 3 ripples (spurious
 # folds from elements too long for the cohesive zone), so the fast sweep stays at μ ≤ 2. The
 # sweep skips the immediate neighbourhood of the measured jump-in onset (μ ≈ 0.697): there the
-# fold is so small that "default" can step over it (at μ = 0.7 it reports no jump, "fine" does).
+# fold is so small that a grid can step over it (the solver then refines until it jumps).
 
 import csv
 import io

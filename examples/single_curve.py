@@ -17,9 +17,9 @@ output folder (default out/examples/single_curve).
 
 # %%
 # Settings. μ = 2 lies in the jump-in regime (the measured onset is μ ≈ 0.7, the paper's 0.5), so
-# the curve shows both instabilities while the solve stays short (about a second). Method "bem":
-# the Boussinesq integral of the homogeneous half-space on a radial surface grid, no bulk mesh
-# (method "fem" solves the same surface problem with finite elements and also writes stress
+# the curve shows both instabilities while the solve stays small (a few hundred nodes). Method
+# "bem": the Boussinesq integral of the homogeneous half-space on a radial surface grid, no bulk
+# mesh (method "fem" solves the same surface problem with finite elements and also writes stress
 # fields). Accuracy "default" sizes the surface elements from the cohesive zone at the contact
 # edge; "draft" doubles them and the continuation's turn limit, for a quick look (its error
 # estimate, printed below, says how much that costs in accuracy).
