@@ -137,3 +137,21 @@ def test_a_curve_above_the_onset_that_misses_its_jump_is_refined_until_it_jumps(
     assert result.accuracy == "default/2" and "refined 1 time" in result.message
     below = solve_curve(0.69, method="bem", error_estimate=False)  # no jump to miss below
     assert below.events.jump_in is None and below.accuracy == "default"
+
+
+def test_a_failing_error_estimate_never_costs_the_result(monkeypatch):
+    """Whatever stops the coarser solve (here an input error from inside it, as the grid of a
+    diverged coarse state raised at mu = 9, BEM draft), the curve is kept without an estimate."""
+    import fem_asperity.solver.solve as solve
+
+    real = solve.solve_discretised
+
+    def failing_coarse(mu, disc, **kwargs):
+        if disc.name.endswith("/coarse"):
+            raise InputError("need 0 < h <= band (from inside the coarse solve)")
+        return real(mu, disc, **kwargs)
+
+    monkeypatch.setattr(solve, "solve_discretised", failing_coarse)
+    result = solve.solve_curve(1.0, method="bem", accuracy="draft")
+    assert result.error_estimate is None and result.status == "no_estimate"
+    assert "InputError" in result.message and result.events.jump_in is not None

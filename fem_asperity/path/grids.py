@@ -174,6 +174,10 @@ class EdgeGrids:
         """(surface, w) of the state (w, δ̄o) moved to the grid of its edges (the pre-contact
         grid without contact), w interpolated linearly."""
         edges = self._edges(surface, w, delta)
+        if edges[1] + self.band >= self.r_max:  # a state no grid of this traction radius holds
+            raise ContinuationError(f"the crack tip ({edges[1]:.4g} sqrt(R eps)) left the "
+                                    f"traction radius {self.r_max:g} at δ = {delta:.6g}; the "
+                                    "discretisation is too coarse for this mu")
         new = (self._surface(self._grid(surface, w, delta, edges), edges)
                if edges[1] > 0.0 else self.start)
         self.regrids += 1

@@ -21,7 +21,7 @@ from ..path.curve import read_events
 from ..path.grids import FixedGrid
 from ..path.whole_curve import whole_curve_paths
 from ..plumbing.checks import in_range, positive
-from ..plumbing.errors import ContinuationError, InputError
+from ..plumbing.errors import InputError
 from ..solids.fe import Solid
 from .presets import discretisation
 from .result import CurveResult, Model, worst_status
@@ -159,9 +159,9 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
             if coarse.ripples:
                 note = ("; the coarser solve of the error estimate ripples (more than two folds), "
                         "so the estimate is pessimistic")
-        except ContinuationError as exc:
+        except Exception as exc:  # the estimate never costs the result: whatever stopped it
             estimate, note = None, (f"; no error estimate: the coarser discretisation failed "
-                                    f"({exc}); try a finer accuracy")
+                                    f"({type(exc).__name__}: {exc}); try a finer accuracy")
             status = worst_status(result.status, "no_estimate")
     return replace(result, error_estimate=estimate, status=status, message=result.message + note,
                    wall_s=time.perf_counter() - start)
