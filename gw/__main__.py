@@ -60,9 +60,11 @@ def _inputs(args, parser):
     physical = (args.sigma, args.eps, args.radius, args.density, args.estar,
                 args.work_of_adhesion)
     if any(v is not None for v in physical):
-        if None in physical or args.mu is not None or args.zeta is not None:
+        dimensionless = (args.mu, args.zeta, args.omega, args.sigma_r_eta)
+        if None in physical or any(v is not None for v in dimensionless):
             parser.error("physical inputs need all of --sigma --eps --radius --density --estar "
-                         "--work-of-adhesion, and no --mu or --zeta")
+                         "--work-of-adhesion, and none of --mu --zeta --omega --sigma-r-eta "
+                         "(they follow from the physical inputs: omega from eq. 20)")
         mu = Scales(E_star=args.estar, dgamma=args.work_of_adhesion, eps=args.eps,
                     R=args.radius).mu
         return mu, RoughSurface.from_physical(sigma=args.sigma, radius=args.radius,

@@ -53,6 +53,7 @@ def test_every_command_has_a_version_and_names_its_subcommands(package):
 
 @pytest.mark.parametrize("args", [
     ["laws", "--mu", "-1"], ["laws", "--mu", "nan"], ["laws", "--mu", "abc"], ["laws"],
+    ["laws", "--mu", "1e300"], ["laws", "--mu", "1e300", "--json"],
     ["laws", "--mu", "1", "--R", "1e-6"],
     ["laws", "--E-star", "1e9", "--dgamma", "0.05", "--eps", "3e-10", "--R", "1e-9"],
     ["scales", "--E1", "1e9", "--nu1", "0.5", "--dgamma", "0.05", "--eps", "3e-10", "--R", "1e-6"],

@@ -14,6 +14,15 @@ from ..plumbing.checks import in_range, positive
 from ..plumbing.errors import InputError
 from .lj import bradley_force, separation_from_gap
 
+#: Largest Tabor parameter the closed forms take: beyond it μ^(3/2) in eq. 2 overflows toward
+#: inf/inf (μ = 1e300 gave NaN); 1e8 is also the Maugis-Dugdale reference's limit.
+MU_MAX = 1e8
+
+
+def _mu(mu):
+    """μ checked: finite, in (0, MU_MAX)."""
+    return in_range("mu", mu, 0.0, MU_MAX)
+
 
 def _out(x):
     """A 0-d result as a Python float or bool, arrays unchanged."""
@@ -84,16 +93,16 @@ class AsperityLaws:
 
     def jump_in(self, mu):
         """True where the approach jumps in (μ ≥ mu_jump)."""
-        return _out(positive("mu", mu) >= self.mu_jump)
+        return _out(_mu(mu) >= self.mu_jump)
 
     def p_max(self, mu):
         """Maximum adhesive force, Wu's fit (eq. 2): −(1/8)(7 + (1 − c μ^1.5)/(1 + c μ^1.5))."""
-        k = self.c_off * positive("mu", mu) ** 1.5
+        k = self.c_off * _mu(mu) ** 1.5
         return _out(-(7.0 + (1.0 - k) / (1.0 + k)) / 8.0)
 
     def a_c(self, mu):
         """Compressive contact radius at P̄max (eq. 6): c_a (μ − mu_a)^½, zero below mu_a."""
-        mu = positive("mu", mu)
+        mu = _mu(mu)
         return _out(self.c_a * np.sqrt(np.maximum(mu - self.mu_a, 0.0)))
 
     def _jump_gap(self, mu):
@@ -102,7 +111,7 @@ class AsperityLaws:
 
     def x_oc(self, mu):
         """Centre gap at jump-in, eq. (12); NaN where there is no jump-in (μ < mu_jump)."""
-        mu = np.asarray(positive("mu", mu))
+        mu = np.asarray(_mu(mu))
         return _out(np.where(mu >= self.mu_jump, self._jump_gap(mu), np.nan))
 
     def _jump_separation(self, mu):
@@ -111,13 +120,13 @@ class AsperityLaws:
 
     def delta_oc(self, mu):
         """Separation at P̄max: eq. (7) 1 + c_oc μ below mu_jump, eq. (13) from it on."""
-        mu = np.asarray(positive("mu", mu))
+        mu = np.asarray(_mu(mu))
         return _out(np.where(mu >= self.mu_jump, self._jump_separation(mu), 1.0 + self.c_oc * mu))
 
     def delta_o_star(self, mu):
         """Separation at first contact: eq. (10) 1 + c_star μ^1.5 below mu_jump, eq. (13) from it
         on."""
-        mu = np.asarray(positive("mu", mu))
+        mu = np.asarray(_mu(mu))
         continuous = 1.0 + self.c_star * mu**1.5
         return _out(np.where(mu >= self.mu_jump, self._jump_separation(mu), continuous))
 
@@ -127,7 +136,7 @@ class AsperityLaws:
         Above δ̄oc: eq. (9) (Bradley's law scaled to pass through P̄max) without jump-in, eq. (14)
         (Bradley's law itself) with it; below δ̄oc: P̄max plus Hertz (eqs. 16, 18).
         """
-        delta_o, mu = np.broadcast_arrays(in_range("delta_o", delta_o), positive("mu", mu))
+        delta_o, mu = np.broadcast_arrays(in_range("delta_o", delta_o), _mu(mu))
         return _out(_force(delta_o, mu, *self._force_constants(mu)))
 
     def area(self, delta_o, *, mu):
@@ -135,7 +144,7 @@ class AsperityLaws:
 
         Zero above δ̄o*; below it π(δ̄o* − δ̄o) without jump-in, π(ā_c² + δ̄o* − δ̄o) with it.
         """
-        delta_o, mu = np.broadcast_arrays(in_range("delta_o", delta_o), positive("mu", mu))
+        delta_o, mu = np.broadcast_arrays(in_range("delta_o", delta_o), _mu(mu))
         return _out(_area(delta_o, *self._area_constants(mu)))
 
     def _force_constants(self, mu):
@@ -149,14 +158,14 @@ class AsperityLaws:
 
     def at(self, mu):
         """The laws at one μ as a fast `LawAtMu` (constants evaluated once, δ̄o unchecked)."""
-        mu = float(positive("mu", mu))
+        mu = float(_mu(mu))
         force = tuple(float(c) for c in self._force_constants(mu))
         return LawAtMu(mu, force, tuple(float(c) for c in self._area_constants(mu)))
 
     def events(self, mu):
         """All approach events at Tabor parameter(s) `mu` as a `LawEvents`."""
         return LawEvents(
-            mu=_out(np.asarray(positive("mu", mu))),
+            mu=_out(np.asarray(_mu(mu))),
             p_max=self.p_max(mu),
             delta_oc=self.delta_oc(mu),
             delta_o_star=self.delta_o_star(mu),
