@@ -14,9 +14,9 @@ from ..plumbing.checks import in_range, positive
 from ..plumbing.errors import InputError
 from .lj import bradley_force, separation_from_gap
 
-#: Largest Tabor parameter the closed forms take: beyond it μ^(3/2) in eq. 2 overflows toward
-#: inf/inf (μ = 1e300 gave NaN); 1e8 is also the Maugis-Dugdale reference's limit.
-MU_MAX = 1e8
+#: Largest Tabor parameter the closed forms take, far into the JKR limit yet far from where
+#: μ^(3/2) in eq. 2 overflows to inf/inf (μ = 1e300 gave NaN). test_cli's bad-input test pins it.
+MU_MAX = 1e12
 
 
 def _mu(mu):
