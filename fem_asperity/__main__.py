@@ -5,11 +5,11 @@ from SI inputs; curve: approach and retraction solved by FE or boundary integral
 curves over mu in parallel (stored, resumable); onset: the smallest mu with a jump-in."""
 
 import sys
-from pathlib import Path
 
 from .closed_forms.laws import PAPER_LAWS
 from .closed_forms.scales import Scales, effective_modulus
 from .plumbing.cli import Parser, ProgressBar, dump_json, print_table, run
+from .plumbing.files import writable_folder
 from .solver.presets import METHODS, PRESETS
 
 PROG = "python -m fem_asperity"
@@ -146,8 +146,8 @@ def _curve(args, parser):
     from .solver.output import write_all
     from .solver.solve import solve_curve, solve_to_tolerance
 
-    if args.out is not None and Path(args.out).exists() and not Path(args.out).is_dir():
-        parser.error(f"curve: --out must be a folder; {args.out} is a file")  # before solving
+    if args.out is not None:
+        writable_folder(args.out, "--out")  # before solving
     if args.layer_thickness is None and (args.layer_modulus_ratio != 1.0
                                          or args.layer_nu is not None):
         parser.error("curve: --layer-modulus-ratio and --layer-nu need --layer-thickness")
@@ -186,9 +186,7 @@ def _curve(args, parser):
 def _sweep(args, parser):
     from .studies.sweep import mu_range, sweep
 
-    out = Path(args.out)
-    if out.exists() and not out.is_dir():
-        parser.error(f"sweep: --out must be a folder; {out} is a file")
+    out = writable_folder(args.out, "--out")  # before solving
     mus = mu_range(*args.mu_range) if args.mu_range else args.mu
     bar = ProgressBar(f"{args.method.upper()} sweep of {len(mus)} mu", time_left=True)
     result = sweep(mus, method=args.method, accuracy=args.accuracy,

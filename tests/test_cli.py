@@ -110,8 +110,10 @@ def test_validation_all_unwritable_output_is_one_line_and_writes_nothing(tmp_pat
     blocker = tmp_path / "taken"
     blocker.write_text("a file where a folder is needed")
     done = cli("validation", "all", "--out", str(blocker / "out"))
-    assert done.returncode == 1 and "Traceback" not in done.stderr
-    assert len(done.stderr.strip().splitlines()) == 2  # the progress line, then the error
+    assert done.returncode == 2 and "Traceback" not in done.stderr  # refused before any work
+    assert done.stderr.strip().splitlines() == [
+        f"python -m validation: error: --out: cannot create {blocker / 'out'}: {blocker} is a "
+        "file"]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["taken"]
 
 

@@ -159,3 +159,10 @@ def test_mu_range_is_log_spaced_and_checked():
         sweep([], **FAST)
     with pytest.raises(InputError):
         sweep([1.0], method="spectral")
+
+
+def test_an_unwritable_store_is_refused_before_any_solve(tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("not a folder")
+    with pytest.raises(InputError, match="ADHESION_CACHE"):
+        sweep([1.0], cache=blocker / "store", **FAST)

@@ -10,11 +10,10 @@ import time
 from dataclasses import asdict
 from pathlib import Path
 
-from fem_asperity import InputError
 from fem_asperity.closed_forms.laws import PAPER_LAWS
 from fem_asperity.plumbing.checks import positive
 from fem_asperity.plumbing.cli import Parser, dump_json, run
-from fem_asperity.plumbing.files import save_figure, write_atomic
+from fem_asperity.plumbing.files import save_figure, staged_folder, writable_folder, write_atomic
 from fem_asperity.solver.presets import PRESETS
 
 from .closed_forms import closed_form_checks
@@ -104,14 +103,8 @@ def _single(out, args, first_step, total):
                     "refit": single["refit"]}
 
 
-def _check_out(out):
-    if out.exists() and not out.is_dir():
-        raise InputError(f"--out must be a folder; {out} is a file")
-
-
 def run_all(out, command, args):
-    """Write every output that exists so far into `out`; return a summary dict."""
-    _check_out(out)
+    """Write every output into `out`; return a summary dict."""
     start = time.perf_counter()
     _step(1, "paper laws over mu (closed forms, Maugis-Dugdale)")
     rows = law_table()
@@ -128,54 +121,49 @@ def run_all(out, command, args):
     wall_s = time.perf_counter() - start
     write_atomic(out / "report.md", render(checks, files, command, rough_section(rough),
                                            single_section(single), wall_s=wall_s))
-    return {"out": str(out), "files": [name for name, _ in files],
+    return {"files": [name for name, _ in files],
             "checks": [c.as_dict() for c in checks], **single_summary, **rough_summary,
             "not_yet_available": [{"item": i, "needs": n} for i, n in PENDING],
             "wall_s": wall_s}
+
+
+def _run(args, command, out):
+    """The command's outputs written into `out`; its summary."""
+    if args.command == "single-asperity":
+        return {"files": [name for name, _ in SINGLE_FILES], **_single(out, args, 1, 2)[1]}
+    if args.command == "rough-surface":
+        return {"files": [name for name, _ in ROUGH_FILES], **_rough(out, args, 1, 2)[1]}
+    return run_all(out, command, args)
+
+
+def _tell(args, summary):
+    """The summary for people."""
+    print(f"wrote {', '.join(summary['files'])} to {args.out}/")
+    for key, name in (("checks", "closed-form checks"), ("single_asperity", "single-asperity "
+                      "claims"), ("rough_surface", "rough-surface claims")):
+        if key in summary:
+            verdicts = [v.get("verdict") or ("holds" if v["holds"] else "fails")
+                        for v in summary[key]]
+            print(f"{name}: {verdicts.count('holds')} hold, {verdicts.count('fails')} fail, "
+                  f"{verdicts.count('note')} notes (see report.md)")
+    if args.command == "all" and PENDING:
+        print(f"not yet available: {len(PENDING)} items (see report.md)")
 
 
 def main(argv=None):
     args = build_parser().parse_args(argv)
     if args.command != "single-asperity":
         positive("--compare-mu", args.compare_mu)  # before anything is written
+    writable_folder(args.out, "--out")
     command = " ".join([PROG] + (sys.argv[1:] if argv is None else list(argv)))
-    if args.command == "single-asperity":
-        _check_out(args.out)
-        single, summary = _single(args.out, args, 1, 2)
-        summary = {"out": str(args.out), "files": [name for name, _ in SINGLE_FILES], **summary}
-        if args.json:
-            dump_json(summary)
-        else:
-            held = [v["holds"] for v in single["verdicts"]]
-            print(f"wrote {args.out}/single_asperity/: {held.count(True)} claims hold, "
-                  f"{held.count(False)} fail (see report.md)")
-        return 0
-    if args.command == "rough-surface":
-        _check_out(args.out)
-        summary = {"out": str(args.out), "files": [name for name, _ in ROUGH_FILES],
-                   **_rough(args.out, args, 1, 2)[1]}
-        if args.json:
-            dump_json(summary)
-        else:
-            print(f"wrote {', '.join(summary['files'])} to {args.out}/")
-        return 0
-    summary = run_all(args.out, command, args)
+    # All or nothing as a set: written into a staging folder, moved into --out at the end (each
+    # file or folder of the set replacing its namesake; other entries of --out stay).
+    with staged_folder(args.out, whole=False) as stage:
+        summary = {"out": str(args.out), **_run(args, command, stage)}
     if args.json:
         dump_json(summary)
     else:
-        verdicts = [c["verdict"] for c in summary["checks"]]
-        print(f"wrote {', '.join(summary['files'])} to {args.out}/")
-        print(f"closed-form checks: {verdicts.count('holds')} hold, "
-              f"{verdicts.count('fails')} fail, "
-              f"{verdicts.count('note')} notes (see report.md)")
-        rough = [r["verdict"] for r in summary["rough_surface"]]
-        print(f"rough-surface claims: {rough.count('holds')} hold, {rough.count('fails')} fail, "
-              f"{rough.count('note')} notes (see report.md)")
-        single = [v["holds"] for v in summary["single_asperity"]]
-        print(f"single-asperity claims: {single.count(True)} hold, {single.count(False)} fail "
-              f"(see report.md)")
-        if PENDING:
-            print(f"not yet available: {len(PENDING)} items (see report.md)")
+        _tell(args, summary)
     return 0
 
 

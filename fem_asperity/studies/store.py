@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from ..path.curve import Curve, Events, Jump, curve_from_columns
-from ..plumbing.files import write_atomic
+from ..plumbing.files import writable_folder, write_atomic
 from ..solver.result import write_curves
 from ..solver.solve import solve_curve
 
@@ -157,6 +157,7 @@ def stored_curve(mu, *, method="bem", accuracy="default", error_estimate=False,
     folder = curve_folder(mu, method=method, accuracy=accuracy, error_estimate=error_estimate,
                           unstable_branch=unstable_branch, cache=cache)
     if not is_stored(folder):
+        writable_folder(folder.parent, "the store ($ADHESION_CACHE)")  # before solving
         keep(solve_curve(mu, method=method, accuracy=accuracy, error_estimate=error_estimate,
                          unstable_branch=unstable_branch, progress=progress), folder)
     return read_stored(folder)

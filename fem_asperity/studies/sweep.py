@@ -29,11 +29,11 @@ from ..path.curve import Curve
 from ..plumbing.checks import in_range
 from ..plumbing.cli import format_cell
 from ..plumbing.errors import InputError
-from ..plumbing.files import staged_folder, write_atomic
+from ..plumbing.files import staged_folder, writable_folder, write_atomic
 from ..plumbing.version import __version__
 from ..solver.presets import METHODS, PRESETS
 from ..solver.solve import solve_curve
-from .store import COST_KEYS, curve_folder, is_stored, keep, read_stored, solver_revision
+from .store import COST_KEYS, cache_dir, curve_folder, is_stored, keep, read_stored, solver_revision
 
 #: Columns of curves.csv with their units (dimensionless, the paper's scales).
 CURVE_COLUMNS = {"mu": "-", "path": "approach | retraction", "point": "index along the path",
@@ -253,6 +253,7 @@ def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, jobs=No
     jobs = jobs or os.cpu_count() or 1
     if int(jobs) != jobs or jobs < 1:
         raise InputError(f"jobs must be a whole number >= 1; got {jobs!r}")
+    writable_folder(cache or cache_dir(), "the store ($ADHESION_CACHE)")  # before solving
     start = time.perf_counter()
     folders = {mu: curve_folder(mu, method=method, accuracy=accuracy,
                                 error_estimate=error_estimate, cache=cache) for mu in mus}
