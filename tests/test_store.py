@@ -45,3 +45,40 @@ def test_the_whole_curve_is_stored_apart_with_its_unstable_branch(tmp_path):
     assert whole.folder != stable.folder
     assert stable.equilibrium.stable.all() and not whole.equilibrium.stable.all()
     assert whole.events.p_off == pytest.approx(stable.events.p_off, rel=1e-6)
+
+
+def _counting(monkeypatch):
+    solved, real_solve = [], store.solve_curve
+
+    def counting_solve(*args, **kwargs):
+        solved.append(args)
+        return real_solve(*args, **kwargs)
+
+    monkeypatch.setattr(store, "solve_curve", counting_solve)
+    return solved
+
+
+@pytest.mark.parametrize("damage", ["cut a curve at a line boundary", "garble the manifest"])
+def test_a_corrupt_entry_is_moved_aside_and_solved_again(tmp_path, monkeypatch, damage):
+    solved = _counting(monkeypatch)
+    first = store.stored_curve(0.3, accuracy="draft", cache=tmp_path)
+    if damage.startswith("cut"):
+        lines = (first.folder / "approach.csv").read_text().splitlines(keepends=True)
+        (first.folder / "approach.csv").write_text("".join(lines[: len(lines) // 2]))
+    else:
+        (first.folder / "manifest.json").write_text("{not json")
+    with pytest.warns(store.StoreWarning, match="corrupt"):
+        again = store.stored_curve(0.3, accuracy="draft", cache=tmp_path)
+    assert len(solved) == 2 and again.events == first.events
+    assert len(again.approach) == len(first.approach)
+    assert (tmp_path / f"{first.folder.name}.corrupt-1").is_dir()
+
+
+def test_two_callers_of_one_entry_solve_it_once(tmp_path, monkeypatch):
+    from concurrent.futures import ThreadPoolExecutor
+
+    solved = _counting(monkeypatch)
+    with ThreadPoolExecutor(2) as pool:
+        found = list(pool.map(lambda _: store.stored_curve(0.3, accuracy="draft",
+                                                           cache=tmp_path), range(2)))
+    assert len(solved) == 1 and found[0].events == found[1].events

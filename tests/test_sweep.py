@@ -75,11 +75,11 @@ def test_a_killed_sweep_resumes_without_solving_again_what_it_stored(tmp_path):
     first = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL,
                              stderr=subprocess.DEVNULL)
     deadline = time.monotonic() + 120
-    while not list((tmp_path / "store").glob("*/events.json")) and time.monotonic() < deadline:
+    while not list((tmp_path / "store").glob("*/manifest.json")) and time.monotonic() < deadline:
         time.sleep(0.05)
     first.send_signal(signal.SIGINT)  # Ctrl-C once the first curve is stored
     assert first.wait(timeout=60) != 0  # it was interrupted, not finished
-    kept = len(list((tmp_path / "store").glob("*/events.json")))
+    kept = len(list((tmp_path / "store").glob("*/manifest.json")))
     assert 1 <= kept < 4
     again = sweep((0.2, 0.3, 0.4, 0.6), cache=tmp_path / "store", jobs=1, **FAST)
     assert again.stored == kept and again.solved == 4 - kept and not again.failed

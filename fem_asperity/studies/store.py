@@ -1,17 +1,20 @@
 """Solved single-asperity curves, computed on demand and stored for reuse.
 
-A curve at (μ, method, accuracy) is solved once with `solver.solve.solve_curve` (no error
-estimate) and its files (`approach.csv`, ..., `result.json`, `events.json`) are kept under
-$ADHESION_CACHE, else ~/.cache/adhesion-verification. `events.json` is written last, so a folder
-without it is solved again. Folders carry the solver's revision (`solver_revision`): a changed
-solver solves afresh instead of serving an older solver's curves.
+A curve at (μ, method, accuracy) is solved once with `solver.solve.solve_curve` and its files
+(`approach.csv`, ..., `result.json`, `events.json`) are kept under $ADHESION_CACHE, else
+~/.cache/adhesion-verification, with `manifest.json` (their checksums) written last: a folder
+without it is solved again, one whose files no longer match it is moved aside and solved again.
+Folders carry the solver's revision (`solver_revision`): a changed solver solves afresh instead
+of serving an older solver's curves.
 """
 
 import ast
+import contextlib
 import hashlib
 import importlib.util
 import json
 import os
+import warnings
 from dataclasses import asdict, dataclass
 from functools import cache
 from pathlib import Path
@@ -123,15 +126,72 @@ def curve_folder(mu, *, method, accuracy, error_estimate, unstable_branch=False,
     return Path(cache or cache_dir()) / name
 
 
+#: The files of a stored curve, each recorded in the manifest with its SHA-256.
+STORED_FILES = ("approach.csv", "retraction.csv", "equilibrium.csv", "result.json",
+                "events.json")
+#: Written last: a folder without it is incomplete; a file that no longer matches it is corrupt.
+MANIFEST = "manifest.json"
+
+
+class StoreWarning(UserWarning):
+    """A stored entry was unreadable or corrupt: moved aside and solved again."""
+
+
+def _digest(path):
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
 def is_stored(folder):
-    """Whether `folder` holds a complete stored curve (events.json is written last)."""
-    return (Path(folder) / "events.json").exists()
+    """Whether `folder` holds a complete, intact stored curve. An entry whose files no longer
+    match their manifest (cut, garbled, missing) is moved aside (`<folder>.corrupt-N`) with a
+    `StoreWarning`, and counts as not stored."""
+    folder = Path(folder)
+    try:
+        recorded = json.loads((folder / MANIFEST).read_text())
+    except FileNotFoundError:
+        return False
+    except (OSError, ValueError):
+        recorded = None
+    try:
+        intact = recorded is not None and all(
+            _digest(folder / name) == recorded[name] for name in STORED_FILES)
+    except (OSError, KeyError, TypeError):
+        intact = False
+    if not intact:
+        aside = next(folder.with_name(f"{folder.name}.corrupt-{n}") for n in range(1, 10**6)
+                     if not folder.with_name(f"{folder.name}.corrupt-{n}").exists())
+        os.replace(folder, aside)
+        warnings.warn(f"stored curve {folder.name} was corrupt: moved to {aside.name}, solving "
+                      "it again", StoreWarning, stacklevel=2)
+    return intact
 
 
 def keep(result, folder):
-    """Store the `CurveResult` in `folder`: its curves and result.json, then events.json."""
+    """Store the `CurveResult` in `folder`: its curves, result.json and events.json, then the
+    manifest of their checksums."""
+    folder = Path(folder)
     write_curves(result, folder)
-    write_atomic(Path(folder) / "events.json", json.dumps(asdict(result.events), indent=1) + "\n")
+    write_atomic(folder / "events.json", json.dumps(asdict(result.events), indent=1) + "\n")
+    manifest = {name: _digest(folder / name) for name in STORED_FILES}
+    write_atomic(folder / MANIFEST, json.dumps(manifest, indent=1) + "\n")
+
+
+@contextlib.contextmanager
+def _entry_lock(folder):
+    """Hold `<folder>.lock` (flock) while an entry is checked and solved, so that two processes
+    asking for the same curve solve it once: the second waits, then reads it."""
+    try:
+        import fcntl
+    except ImportError:  # no flock (Windows): no lock, at worst a curve solved twice
+        yield
+        return
+    folder.parent.mkdir(parents=True, exist_ok=True)
+    with open(folder.with_name(folder.name + ".lock"), "a") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)
 
 
 def _read_curve(path):
@@ -156,8 +216,11 @@ def stored_curve(mu, *, method="bem", accuracy="default", error_estimate=False,
     `equilibrium` is the whole curve, unstable branches included (`solve_curve`)."""
     folder = curve_folder(mu, method=method, accuracy=accuracy, error_estimate=error_estimate,
                           unstable_branch=unstable_branch, cache=cache)
-    if not is_stored(folder):
-        writable_folder(folder.parent, "the store ($ADHESION_CACHE)")  # before solving
-        keep(solve_curve(mu, method=method, accuracy=accuracy, error_estimate=error_estimate,
-                         unstable_branch=unstable_branch, progress=progress), folder)
+    if is_stored(folder):
+        return read_stored(folder)
+    writable_folder(folder.parent, "the store ($ADHESION_CACHE)")  # before solving
+    with _entry_lock(folder):
+        if not is_stored(folder):  # another process may have solved it while we waited
+            keep(solve_curve(mu, method=method, accuracy=accuracy, error_estimate=error_estimate,
+                             unstable_branch=unstable_branch, progress=progress), folder)
     return read_stored(folder)
