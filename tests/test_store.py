@@ -82,3 +82,21 @@ def test_two_callers_of_one_entry_solve_it_once(tmp_path, monkeypatch):
         found = list(pool.map(lambda _: store.stored_curve(0.3, accuracy="draft",
                                                            cache=tmp_path), range(2)))
     assert len(solved) == 1 and found[0].events == found[1].events
+
+
+def test_a_garbled_stored_onset_is_computed_again(tmp_path, monkeypatch):
+    import fem_asperity.studies.onset as onset
+
+    computed = []
+
+    def fake_onset(*, method, accuracy):
+        computed.append(method)
+        return onset.Onset(0.697, 0.696, 0.698, method, accuracy, evaluations=9, wall_s=1.0)
+
+    monkeypatch.setattr(onset, "jump_in_onset", fake_onset)
+    onset.stored_onset(method="bem", accuracy="draft", cache=tmp_path)
+    (stored,) = tmp_path.glob("onset-*.json")
+    stored.write_text('{"mu_onset": 0.69')  # cut
+    with pytest.warns(store.StoreWarning, match="corrupt"):
+        again = onset.stored_onset(method="bem", accuracy="draft", cache=tmp_path)
+    assert len(computed) == 2 and again.mu_onset == 0.697

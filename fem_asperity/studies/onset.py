@@ -26,7 +26,7 @@ from ..plumbing.errors import InputError
 from ..plumbing.files import write_atomic
 from ..solver.presets import discretisation
 from ..solver.solve import PATH_BLAS_THREADS
-from .store import cache_dir, code_revision
+from .store import cache_dir, code_revision, read_stored_json
 
 
 def fold_margin(mu, *, method="bem", accuracy="default"):
@@ -90,8 +90,9 @@ def stored_onset(*, method="bem", accuracy="default", cache=None):
     (keyed by the code of this module and all it imports)."""
     name = f"onset-{method}-{accuracy}-{code_revision(__name__)}.json"
     path = Path(cache or cache_dir()) / name
-    if path.exists():
-        return Onset(**json.loads(path.read_text()))
+    stored = read_stored_json(path, lambda data: Onset(**data))
+    if stored is not None:
+        return stored
     onset = jump_in_onset(method=method, accuracy=accuracy)
     write_atomic(path, json.dumps(onset.records(), indent=1) + "\n")
     return onset

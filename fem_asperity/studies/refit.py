@@ -23,7 +23,7 @@ from scipy.optimize import minimize_scalar
 from ..closed_forms.laws import AsperityLaws
 from ..plumbing.files import write_atomic
 from .onset import stored_onset
-from .store import cache_dir, code_revision, stored_curve
+from .store import cache_dir, code_revision, read_stored_json, stored_curve
 
 #: Tabor parameters of the refit: both regimes, on uniform BEM grids (below MU_TRACKING), where a
 #: curve is cheap. Not pinned by a test (test_refit.py fits its own μ).
@@ -89,17 +89,21 @@ def refit(mus=REFIT_MU, *, method="bem", accuracy="default", progress=None):
     return Refit(laws, residuals, tuple(float(m) for m in mu), method, accuracy)
 
 
+def _refit_from_dict(data):
+    residuals = {k: tuple(v) for k, v in data["residuals"].items()}
+    return Refit(AsperityLaws(**data["laws"]), residuals, tuple(data["mu"]), data["method"],
+                 data["accuracy"])
+
+
 def stored_refit(*, method="bem", accuracy="default", cache=None, announce=None):
     """`Refit` read from the store, or computed (over `REFIT_MU`) and stored. The store key is
     the revision of this module's code and all it imports (the fit forms, the onset search, the
     laws, the solver). announce: callable(str), told when the refit has to be computed (it
     solves and stores the curves it needs first)."""
     path = Path(cache or cache_dir()) / f"refit-{method}-{accuracy}-{code_revision(__name__)}.json"
-    if path.exists():
-        data = json.loads(path.read_text())
-        residuals = {k: tuple(v) for k, v in data["residuals"].items()}
-        return Refit(AsperityLaws(**data["laws"]), residuals, tuple(data["mu"]),
-                     data["method"], data["accuracy"])
+    stored = read_stored_json(path, _refit_from_dict)
+    if stored is not None:
+        return stored
     if announce is not None:
         announce(f"refitting the eight constants from {method} curves at {len(REFIT_MU)} mu "
                  "(stored for next time) ...")

@@ -166,6 +166,21 @@ def is_stored(folder):
     return intact
 
 
+def read_stored_json(path, build):
+    """`build(data)` of the stored JSON file `path`; None if it is not there, or unreadable (then
+    moved aside with a `StoreWarning`, so that the caller computes it again)."""
+    path = Path(path)
+    try:
+        return build(json.loads(path.read_text()))
+    except FileNotFoundError:
+        return None
+    except (OSError, ValueError, KeyError, TypeError):
+        os.replace(path, path.with_name(path.name + ".corrupt"))
+        warnings.warn(f"stored {path.name} was corrupt: moved aside, computing it again",
+                      StoreWarning, stacklevel=2)
+        return None
+
+
 def keep(result, folder):
     """Store the `CurveResult` in `folder`: its curves, result.json and events.json, then the
     manifest of their checksums."""
