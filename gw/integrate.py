@@ -25,6 +25,9 @@ from .surface import height_pdf
 #: equal panels per piece and geometric levels of each end panel: as above. All four pinned by
 #: test_gw.py::test_totals_match_adaptive_quadrature_to_1e8.
 WINDOW = 12.0
+#: Largest |d̃| taken: far beyond any asperity (12/ω) and the LJ range, yet small enough that
+#: ζ(d̃ ± 12/ω) stays finite (d̃ = 1e307 gave NaN). test_gw's bad-input test pins it.
+D_MAX = 1e6
 _GAUSS = np.polynomial.legendre.leggauss(5)
 _UNIFORM, _LEVELS = 20, 12
 
@@ -44,7 +47,7 @@ _NODES, _WEIGHTS = _template()
 
 def totals(law, surface, d):
     """(F̄, S̄) at the mean separations `d` (d̃, in σ; array or scalar) for `law` on `surface`."""
-    d = np.atleast_1d(in_range("d", d)).astype(float)
+    d = np.atleast_1d(in_range("d", d, -D_MAX, D_MAX)).astype(float)
     zeta, omega = surface.zeta, surface.omega
     lo, hi = zeta * (d - WINDOW / omega), zeta * (d + WINDOW / omega)  # δ̄o range per d̃
     cuts = [lo] + [np.clip(b, lo, hi) for b in law.breakpoints] + [hi]

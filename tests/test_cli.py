@@ -54,6 +54,11 @@ def test_every_command_has_a_version_and_names_its_subcommands(package):
 @pytest.mark.parametrize("args", [
     ["laws", "--mu", "-1"], ["laws", "--mu", "nan"], ["laws", "--mu", "abc"], ["laws"],
     ["laws", "--mu", "1e300"], ["laws", "--mu", "1e300", "--json"],
+    ["scales", "--E1", "1e300", "--nu1", "0.3", "--dgamma", "0.05", "--eps", "3e-10",
+     "--R", "1e-6"],
+    ["scales", "--E1", "1e-300", "--nu1", "0.3", "--dgamma", "0.05", "--eps", "3e-10",
+     "--R", "1e-6"],
+    ["laws", "--E-star", "1e300", "--dgamma", "0.05", "--eps", "3e-10", "--R", "1e-6"],
     ["laws", "--mu", "1", "--R", "1e-6"],
     ["laws", "--E-star", "1e9", "--dgamma", "0.05", "--eps", "3e-10", "--R", "1e-9"],
     ["scales", "--E1", "1e9", "--nu1", "0.5", "--dgamma", "0.05", "--eps", "3e-10", "--R", "1e-6"],
@@ -174,6 +179,8 @@ def test_curve_json_files_and_progress(tmp_path):
     ["curve", "--mu", "1", "--layer-thickness", "-1"], ["curve", "--mu", "1", "--nu", "0.5"],
     ["curve", "--mu", "1", "--method", "bem", "--layer-thickness", "1"],
     ["curve", "--mu", "1", "--method", "spectral"], ["curve", "--mu", "1", "--tolerance", "0"],
+    ["curve", "--mu", "1e-300"], ["curve", "--mu", "1", "--layer-thickness", "1e-300"],
+    ["curve", "--mu", "1", "--layer-thickness", "1", "--layer-modulus-ratio", "1e300"],
     ["onset", "--bracket", "0.3", "0.5"], ["onset", "--bracket", "1", "0.3"],
 ])
 def test_curve_bad_input_is_one_line_exit_2(args):

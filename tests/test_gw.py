@@ -118,6 +118,7 @@ def test_cli_fmax_and_curve_json():
     ["fmax", "--mu", "1", "--zeta", "1", "--omega", "0.5", "--sigma-r-eta", "0.05"],
     ["fmax", "--mu", "1", "--zeta", "1", "--law", "fitted"], ["fmax", "--sigma", "1e-9"],
     ["curve", "--mu", "1", "--zeta", "1", "--points", "1"],
+    ["curve", "--mu", "1", "--zeta", "6", "--d", "1e307", "1e308", "--points", "3"],
     ["fmax", "--sigma", "2e-9", "--eps", "3e-10", "--radius", "1e-6", "--density", "2e13",
      "--estar", "1e9", "--work-of-adhesion", "0.05", "--omega", "0.5"],  # omega is eq. 20's
 ])

@@ -9,8 +9,19 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..plumbing.checks import derjaguin, poisson, positive
+from ..plumbing.checks import derjaguin, in_range, poisson, positive
 from ..plumbing.errors import InputError
+
+#: Supported ranges of the physical inputs (SI): wide enough for any solid and any LJ system,
+#: narrow enough that μ and the natural scales stay finite in double precision (E = 1e300
+#: overflowed, 1e-300 divided by zero). test_cli's bad-input test pins them.
+MODULUS_RANGE = (1e-3, 1e15)  # Pa
+ADHESION_RANGE = (1e-9, 1e3)  # J/m^2
+LENGTH_RANGE = (1e-13, 1e2)  # m, eps and R
+
+
+def _within(name, value, bounds, unit):
+    return in_range(name, value, *bounds, unit=unit)
 
 
 def effective_modulus(*, E1, nu1, E2=None, nu2=None):
@@ -19,7 +30,7 @@ def effective_modulus(*, E1, nu1, E2=None, nu2=None):
     Leave `E2` and `nu2` out (None) for a rigid second body, E* = E1/(1−ν1²).
     Poisson's ratios must lie in (−1, 0.5).
     """
-    compliance = (1.0 - poisson("nu1", nu1) ** 2) / positive("E1", E1, "Pa")
+    compliance = (1.0 - poisson("nu1", nu1) ** 2) / _within("E1", E1, MODULUS_RANGE, "Pa")
     if E2 is None:
         if nu2 is not None:
             raise InputError("nu2 given without E2: give both for an elastic second body, "
@@ -27,7 +38,7 @@ def effective_modulus(*, E1, nu1, E2=None, nu2=None):
         return 1.0 / compliance
     if nu2 is None:
         raise InputError("E2 given without nu2: Poisson's ratio nu2 in (-1, 0.5) is required")
-    E2 = positive("E2", E2, "Pa (leave E2 and nu2 out for a rigid body)")
+    E2 = _within("E2", E2, MODULUS_RANGE, "Pa (leave E2 and nu2 out for a rigid body)")
     return 1.0 / (compliance + (1.0 - poisson("nu2", nu2) ** 2) / E2)
 
 
@@ -37,9 +48,9 @@ def tabor_parameter(*, E_star, dgamma, eps, R):
     E_star in Pa, dgamma (work of adhesion) in J/m², eps (equilibrium spacing) and R in m.
     Warns (`DerjaguinWarning`) for R/ε < 300 and refuses R/ε < 10.
     """
-    E_star = positive("E_star", E_star, "Pa")
-    dgamma = positive("dgamma", dgamma, "J/m^2")
-    eps, R = positive("eps", eps, "m"), positive("R", R, "m")
+    E_star = _within("E_star", E_star, MODULUS_RANGE, "Pa")
+    dgamma = _within("dgamma", dgamma, ADHESION_RANGE, "J/m^2")
+    eps, R = _within("eps", eps, LENGTH_RANGE, "m"), _within("R", R, LENGTH_RANGE, "m")
     derjaguin(R, eps)
     return np.cbrt(R * dgamma**2 / (E_star**2 * eps**3))
 
@@ -70,14 +81,14 @@ class Scales:
         Uses Δγ/E* = μ^(3/2) √(ε³/R); exactly one of E_star, dgamma must be given.
         """
         mu = positive("mu", mu)
-        eps, R = positive("eps", eps, "m"), positive("R", R, "m")
+        eps, R = _within("eps", eps, LENGTH_RANGE, "m"), _within("R", R, LENGTH_RANGE, "m")
         ratio = mu**1.5 * np.sqrt(eps**3 / R)  # Δγ / E*
         if (E_star is None) == (dgamma is None):
             raise InputError("give exactly one of E_star or dgamma; the other is chosen for mu")
         if E_star is None:
-            E_star = positive("dgamma", dgamma, "J/m^2") / ratio
+            E_star = _within("dgamma", dgamma, ADHESION_RANGE, "J/m^2") / ratio
         else:
-            dgamma = positive("E_star", E_star, "Pa") * ratio
+            dgamma = _within("E_star", E_star, MODULUS_RANGE, "Pa") * ratio
         return cls(E_star=E_star, dgamma=dgamma, eps=eps, R=R)
 
     @property

@@ -31,12 +31,19 @@ from skfem import (
     condense,
 )
 
-from ..plumbing.checks import poisson, positive
+from ..plumbing.checks import in_range, poisson
 from ..plumbing.errors import InputError
 
 ELEMENTS = {1: ElementTriP1, 2: ElementTriP2}
 #: SuperLU options for a symmetric positive definite matrix: symmetric ordering, no pivoting.
 _SPD = dict(diag_pivot_thresh=0.0, options=dict(SymmetricMode=True))
+
+
+#: Supported layer moduli relative to the substrate, and layer thicknesses in √(Rε): at a ratio of
+#: 1e-3 (μ = 1, draft) the continuation failed and at 1e300 the factorisation; a layer thinner
+#: than 1e-2 is below any surface element. The upper ends are open. test_cli's bad-input test
+#: pins both.
+LAYER_MODULUS_RATIO, LAYER_THICKNESS = (1e-2, 1e2 + 1e-9), (1e-2, 1e3)
 
 
 @dataclass(frozen=True)
@@ -56,9 +63,11 @@ class Solid:
     def __post_init__(self):
         poisson("nu", self.nu)
         poisson("layer_nu", self.layer_nu)
-        positive("layer_modulus_ratio", self.layer_modulus_ratio)
+        in_range("layer_modulus_ratio", self.layer_modulus_ratio, *LAYER_MODULUS_RATIO,
+                  closed_lo=True)
         if self.layer_thickness is not None:
-            positive("layer_thickness", self.layer_thickness)
+            in_range("layer_thickness", self.layer_thickness, *LAYER_THICKNESS, closed_lo=True,
+                     unit="sqrt(R eps)")
         elif self.layer_modulus_ratio != 1.0 or self.layer_nu != self.nu:
             raise InputError("layer_modulus_ratio and layer_nu need a layer_thickness")
 

@@ -38,6 +38,11 @@ PATH_BLAS_THREADS = 1
 #: MISSED_JUMP_REFINEMENTS times (test_bem_curve).
 MU_ONSET_HI, MISSED_JUMP_REFINEMENTS = 0.6982, 2
 
+#: Tabor parameters a curve is solved for: from the rigid limit (μ = 1e-3 solves with both
+#: methods; 1e-300 overflowed) to where the edge-following grids end; test_cli's bad-input test
+#: pins the lower end.
+MU_RANGE = (1e-3, 1e4)
+
 #: Event keys compared between the two meshes of the error estimate.
 ESTIMATED = ("p_max", "delta_oc", "a_c", "delta_o_star", "x_oc", "delta_jump_in", "p_jump_after",
              "p_off", "delta_jump_out")
@@ -139,7 +144,7 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     progress: callable(fraction in [0, 1]) for a progress bar.
     Returns a `CurveResult`; raises `ContinuationError` if the path cannot be followed.
     """
-    mu = in_range("mu", mu, 0.0, 1e4)
+    mu = in_range("mu", mu, *MU_RANGE, closed_lo=True)
     positive("p_end", p_end)
     if radius_ratio is not None:
         in_range("radius_ratio", radius_ratio, 10.0, np.inf, closed_lo=True)
@@ -177,7 +182,7 @@ def solve_to_tolerance(mu, tolerance, *, method="fem", solid=Solid(), radius_rat
     P̄off change by at most `tolerance` (relative) between two levels; the finer one is returned
     with those changes as its error estimate. If `max_levels` do not get there, the last level
     is returned with a message saying so. Arguments otherwise as `solve_curve`."""
-    mu = in_range("mu", mu, 0.0, 1e4)
+    mu = in_range("mu", mu, *MU_RANGE, closed_lo=True)
     tolerance = in_range("tolerance", tolerance, 0.0, 0.1)
     disc = discretisation(mu, "draft", p_end=p_end, method=method)
 
