@@ -189,6 +189,15 @@ def test_curve_bad_input_is_one_line_exit_2(args):
     assert len(done.stderr.strip().splitlines()) == 1, done.stderr
 
 
+@pytest.mark.parametrize("args, says", [
+    (["curve", "--mu", "1", "--tolerance", "-1e-3"], "tolerance must be in"),
+    (["laws", "--mu", "-1e-3"], "mu must be in"),
+])
+def test_negative_numbers_in_e_notation_are_values_not_options(args, says):
+    done = cli("fem_asperity", *args)
+    assert done.returncode == 2 and says in done.stderr
+
+
 def test_curve_refuses_a_file_as_output_folder_before_solving(tmp_path):
     taken = tmp_path / "taken.txt"
     taken.write_text("a user's file\n")

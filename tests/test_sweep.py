@@ -73,12 +73,14 @@ def test_a_killed_sweep_resumes_without_solving_again_what_it_stored(tmp_path):
                "--method", "bem", "--accuracy", "draft", "--jobs", "1", "--out",
                str(tmp_path / "first")]
     first = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL,
-                             stderr=subprocess.DEVNULL)
+                             stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 120
     while not list((tmp_path / "store").glob("*/manifest.json")) and time.monotonic() < deadline:
         time.sleep(0.05)
     first.send_signal(signal.SIGINT)  # Ctrl-C once the first curve is stored
-    assert first.wait(timeout=60) != 0  # it was interrupted, not finished
+    _, err = first.communicate(timeout=60)
+    assert first.returncode == 130  # interrupted, not finished: one line, no traceback
+    assert "Traceback" not in err and err.strip().splitlines()[-1].endswith("interrupted")
     kept = len(list((tmp_path / "store").glob("*/manifest.json")))
     assert 1 <= kept < 4
     again = sweep((0.2, 0.3, 0.4, 0.6), cache=tmp_path / "store", jobs=1, **FAST)

@@ -4,12 +4,16 @@ import argparse
 import json
 import math
 import os
+import re
 import sys
 import time
 import warnings
 
 from .errors import ContinuationError, InputError
 from .version import __version__
+
+#: What argparse must read as a negative number: its own patterns and e-notation.
+NEGATIVE_NUMBER = re.compile(r"^-(\d+|\d*\.\d+|\d*\.?\d+[eE][+-]?\d+)$")
 
 
 class Parser(argparse.ArgumentParser):
@@ -18,6 +22,8 @@ class Parser(argparse.ArgumentParser):
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
+        # Negative numbers in e-notation (--tolerance -1e-3, --d -1e3 1e3) are values, not options.
+        self._negative_number_matcher = NEGATIVE_NUMBER
         self.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
 
     def error(self, message):
@@ -30,6 +36,7 @@ def _warn_one_line(message, *_args, **_kwargs):
 
 def run(main, prog, argv=None):
     """Call `main(argv)`: warnings print as one line, an `InputError` as one line + exit code 2,
+    Ctrl-C as one line + exit code 130,
     an `OSError` (e.g. an output folder that cannot be written) or a `ContinuationError` (a
     curve the solver could not follow) as one line + exit code 1."""
     with warnings.catch_warnings():
@@ -39,6 +46,9 @@ def run(main, prog, argv=None):
         except InputError as exc:
             print(f"{prog}: error: {exc}", file=sys.stderr)
             return 2
+        except KeyboardInterrupt:
+            print(f"{prog}: interrupted", file=sys.stderr)
+            return 130
         except BrokenPipeError:  # output piped into e.g. `head`, which stopped reading
             sys.stdout = open(os.devnull, "w")
             return 0
