@@ -109,16 +109,19 @@ def _revision_with(monkeypatch, module, edit):
 
     monkeypatch.setattr(Path, "read_bytes", read_bytes)
     store.code_revision.cache_clear()
+    store._source.cache_clear()
     try:
         return store.solver_revision()
     finally:
         monkeypatch.undo()
         store.code_revision.cache_clear()
+        store._source.cache_clear()
 
 
 def test_editing_help_or_a_plot_keeps_stored_curves_and_editing_the_solver_discards_them(
         monkeypatch):
     store.code_revision.cache_clear()
+    store._source.cache_clear()
     today = store.solver_revision()
     help_edit = _revision_with(monkeypatch, "fem_asperity.__main__",
                                lambda s: s.replace('help="print JSON', 'help="write JSON'))

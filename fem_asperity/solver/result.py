@@ -90,11 +90,16 @@ class CurveResult:
         }
 
 
+def curve_files(result):
+    """{file name: text} of a result's own files: approach.csv, retraction.csv,
+    equilibrium.csv, then result.json."""
+    files = {f"{name}.csv": getattr(result, name).csv()
+             for name in ("approach", "retraction", "equilibrium")}
+    files["result.json"] = json.dumps(result.records(), indent=2, allow_nan=False) + "\n"
+    return files
+
+
 def write_curves(result, folder):
-    """approach.csv, retraction.csv, equilibrium.csv and result.json under `folder` (result.json
-    last, so that a folder holding it is complete)."""
+    """`curve_files` under `folder`, result.json last (a folder holding it is complete)."""
     folder = Path(folder)
-    paths = [write_atomic(folder / f"{name}.csv", getattr(result, name).csv())
-             for name in ("approach", "retraction", "equilibrium")]
-    text = json.dumps(result.records(), indent=2, allow_nan=False)
-    return paths + [write_atomic(folder / "result.json", text + "\n")]
+    return [write_atomic(folder / name, text) for name, text in curve_files(result).items()]

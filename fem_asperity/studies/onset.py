@@ -11,9 +11,9 @@ with 0.02 rad by 2e-5 (μ = 0.69-0.70);
 test_bem_curve.py::test_fold_margin_changes_sign_between_069_and_070.
 """
 
-import json
 import time
 from dataclasses import dataclass, replace
+from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -23,10 +23,9 @@ from threadpoolctl import threadpool_limits
 from ..path.continuation import trace
 from ..path.curve import parabola_vertex
 from ..plumbing.errors import InputError
-from ..plumbing.files import write_atomic
 from ..solver.presets import discretisation
 from ..solver.solve import PATH_BLAS_THREADS
-from .store import cache_dir, code_revision, read_stored_json
+from .store import cache_dir, code_revision, stored_json
 
 
 def fold_margin(mu, *, method="bem", accuracy="default"):
@@ -89,10 +88,5 @@ def stored_onset(*, method="bem", accuracy="default", cache=None):
     """`jump_in_onset` over the default bracket, read from the store or computed and stored
     (keyed by the code of this module and all it imports)."""
     name = f"onset-{method}-{accuracy}-{code_revision(__name__)}.json"
-    path = Path(cache or cache_dir()) / name
-    stored = read_stored_json(path, lambda data: Onset(**data))
-    if stored is not None:
-        return stored
-    onset = jump_in_onset(method=method, accuracy=accuracy)
-    write_atomic(path, json.dumps(onset.records(), indent=1) + "\n")
-    return onset
+    return stored_json(Path(cache or cache_dir()) / name, lambda data: Onset(**data),
+                       partial(jump_in_onset, method=method, accuracy=accuracy), Onset.records)

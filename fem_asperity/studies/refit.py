@@ -13,7 +13,6 @@ functional form, by least squares:
 `Refit` keeps the constants, the RMS and largest residual of each fit and the μ used.
 """
 
-import json
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -21,9 +20,8 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from ..closed_forms.laws import AsperityLaws
-from ..plumbing.files import write_atomic
 from .onset import stored_onset
-from .store import cache_dir, code_revision, read_stored_json, stored_curve
+from .store import cache_dir, code_revision, stored_curve, stored_json
 
 #: Tabor parameters of the refit: both regimes, on uniform BEM grids (below MU_TRACKING), where a
 #: curve is cheap. Not pinned by a test (test_refit.py fits its own μ).
@@ -101,13 +99,12 @@ def stored_refit(*, method="bem", accuracy="default", cache=None, announce=None)
     laws, the solver). announce: callable(str), told when the refit has to be computed (it
     solves and stores the curves it needs first)."""
     path = Path(cache or cache_dir()) / f"refit-{method}-{accuracy}-{code_revision(__name__)}.json"
-    stored = read_stored_json(path, _refit_from_dict)
-    if stored is not None:
-        return stored
-    if announce is not None:
-        announce(f"refitting the eight constants from {method} curves at {len(REFIT_MU)} mu "
-                 "(stored for next time) ...")
-    found = refit(method=method, accuracy=accuracy)
 
-    write_atomic(path, json.dumps({**asdict(found), "laws": asdict(found.laws)}, indent=1))
-    return found
+    def compute():
+        if announce is not None:
+            announce(f"refitting the eight constants from {method} curves at {len(REFIT_MU)} "
+                     "mu (stored for next time) ...")
+        return refit(method=method, accuracy=accuracy)
+
+    return stored_json(path, _refit_from_dict, compute,
+                       lambda found: {**asdict(found), "laws": asdict(found.laws)})

@@ -12,6 +12,7 @@ import ast
 import contextlib
 import hashlib
 import importlib.util
+import io
 import json
 import os
 import warnings
@@ -23,7 +24,7 @@ import numpy as np
 
 from ..path.curve import Curve, Events, Jump, curve_from_columns
 from ..plumbing.files import writable_folder, write_atomic
-from ..solver.result import write_curves
+from ..solver.result import curve_files
 from ..solver.solve import solve_curve
 
 #: The modules whose code computes a stored curve, and the modules they import from the package:
@@ -64,10 +65,16 @@ def cache_dir():
     return Path(os.environ.get("ADHESION_CACHE", Path.home() / ".cache" / "adhesion-verification"))
 
 
+@cache
+def _source(module):
+    """The source bytes of `module` (read once per process)."""
+    return Path(importlib.util.find_spec(module).origin).read_bytes()
+
+
 def _package_imports(module):
     """Absolute names of the fem_asperity modules `module` imports from (the package imports
     from modules only: `from ..path.curve import Curve`, never `from .. import path`)."""
-    tree = ast.parse(Path(importlib.util.find_spec(module).origin).read_bytes())
+    tree = ast.parse(_source(module))
     package = module.rsplit(".", 1)[0]
     found = {importlib.util.resolve_name("." * node.level + (node.module or ""), package)
              for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)}
@@ -87,7 +94,7 @@ def revision_modules(roots=REVISION_ROOTS):
 
 def _code_digest(module):
     """The module's syntax tree without docstrings: comments, docstrings and layout do not count."""
-    tree = ast.parse(Path(importlib.util.find_spec(module).origin).read_bytes())
+    tree = ast.parse(_source(module))
     for node in ast.walk(tree):
         body = getattr(node, "body", None)
         if (isinstance(body, list) and body and isinstance(body[0], ast.Expr)
@@ -117,12 +124,18 @@ def _events_from_dict(data):
     return Events(**{**data, **jumps})
 
 
+def mu_key(mu):
+    """μ as the store tells curves apart: to 12 significant digits (μ equal to that many digits
+    share a curve)."""
+    return float(f"{float(mu):.12g}")
+
+
 def curve_folder(mu, *, method, accuracy, error_estimate, unstable_branch=False, cache=None):
     """Where the curve at (`mu`, method, accuracy) of this solver revision is stored; curves with
     and without the error estimate, and with the whole equilibrium curve (`unstable_branch`),
     are kept apart (each costs more)."""
     extras = ("-estimated" if error_estimate else "") + ("-whole" if unstable_branch else "")
-    name = f"{method}-{accuracy}{extras}-mu{float(mu):.12g}-{solver_revision()}"
+    name = f"{method}-{accuracy}{extras}-mu{mu_key(mu):.12g}-{solver_revision()}"
     return Path(cache or cache_dir()) / name
 
 
@@ -137,33 +150,17 @@ class StoreWarning(UserWarning):
     """A stored entry was unreadable or corrupt: moved aside and solved again."""
 
 
-def _digest(path):
-    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+def _digest(data):
+    return hashlib.sha256(data if isinstance(data, bytes) else data.encode()).hexdigest()
 
 
-def is_stored(folder):
-    """Whether `folder` holds a complete, intact stored curve. An entry whose files no longer
-    match their manifest (cut, garbled, missing) is moved aside (`<folder>.corrupt-N`) with a
-    `StoreWarning`, and counts as not stored."""
-    folder = Path(folder)
-    try:
-        recorded = json.loads((folder / MANIFEST).read_text())
-    except FileNotFoundError:
-        return False
-    except (OSError, ValueError):
-        recorded = None
-    try:
-        intact = recorded is not None and all(
-            _digest(folder / name) == recorded[name] for name in STORED_FILES)
-    except (OSError, KeyError, TypeError):
-        intact = False
-    if not intact:
-        aside = next(folder.with_name(f"{folder.name}.corrupt-{n}") for n in range(1, 10**6)
-                     if not folder.with_name(f"{folder.name}.corrupt-{n}").exists())
-        os.replace(folder, aside)
-        warnings.warn(f"stored curve {folder.name} was corrupt: moved to {aside.name}, solving "
-                      "it again", StoreWarning, stacklevel=2)
-    return intact
+def _move_aside(path, what):
+    """Rename the corrupt `path` to the first free `<path>.corrupt-N` and warn in one line."""
+    aside = next(path.with_name(f"{path.name}.corrupt-{n}") for n in range(1, 10**6)
+                 if not path.with_name(f"{path.name}.corrupt-{n}").exists())
+    os.replace(path, aside)
+    warnings.warn(f"stored {what} {path.name} was corrupt: moved to {aside.name}, computing it "
+                  "again", StoreWarning, stacklevel=3)
 
 
 def read_stored_json(path, build):
@@ -175,19 +172,29 @@ def read_stored_json(path, build):
     except FileNotFoundError:
         return None
     except (OSError, ValueError, KeyError, TypeError):
-        os.replace(path, path.with_name(path.name + ".corrupt"))
-        warnings.warn(f"stored {path.name} was corrupt: moved aside, computing it again",
-                      StoreWarning, stacklevel=2)
+        _move_aside(path, "file")
         return None
+
+
+def stored_json(path, build, compute, dump):
+    """`build` of the stored JSON `path`, or `compute()` stored there as `dump(found)`: the store
+    of results smaller than a curve (the onset, the refit)."""
+    found = read_stored_json(path, build)
+    if found is None:
+        found = compute()
+        write_atomic(path, json.dumps(dump(found), indent=1) + "\n")
+    return found
 
 
 def keep(result, folder):
     """Store the `CurveResult` in `folder`: its curves, result.json and events.json, then the
     manifest of their checksums."""
     folder = Path(folder)
-    write_curves(result, folder)
-    write_atomic(folder / "events.json", json.dumps(asdict(result.events), indent=1) + "\n")
-    manifest = {name: _digest(folder / name) for name in STORED_FILES}
+    files = {**curve_files(result),
+             "events.json": json.dumps(asdict(result.events), indent=1) + "\n"}
+    for name, text in files.items():
+        write_atomic(folder / name, text)
+    manifest = {name: _digest(text) for name, text in files.items()}
     write_atomic(folder / MANIFEST, json.dumps(manifest, indent=1) + "\n")
 
 
@@ -209,20 +216,40 @@ def _entry_lock(folder):
             fcntl.flock(lock, fcntl.LOCK_UN)
 
 
-def _read_curve(path):
-    return curve_from_columns(*np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2).T)
+def _curve(data):
+    return curve_from_columns(*np.loadtxt(io.BytesIO(data), delimiter=",", skiprows=1,
+                                          ndmin=2).T)
 
 
-def read_stored(folder):
-    """The `StoredCurve` kept in `folder`."""
-    folder = Path(folder)
-    result = json.loads((folder / "result.json").read_text())
-    events = _events_from_dict(json.loads((folder / "events.json").read_text()))
+def _parse(folder, files):
+    """The `StoredCurve` of the file contents `files` (name → bytes) of `folder`."""
+    result, events = json.loads(files["result.json"]), json.loads(files["events.json"])
     return StoredCurve(result["mu"], result["method"], result["accuracy"],
-                       _read_curve(folder / "approach.csv"), _read_curve(folder / "retraction.csv"),
-                       _read_curve(folder / "equilibrium.csv"), events, result["error_estimate"],
-                       result["status"], result["message"],
+                       _curve(files["approach.csv"]), _curve(files["retraction.csv"]),
+                       _curve(files["equilibrium.csv"]), _events_from_dict(events),
+                       result["error_estimate"], result["status"], result["message"],
                        {key: result[key] for key in COST_KEYS}, folder)
+
+
+def load_stored(folder):
+    """The `StoredCurve` kept in `folder` (each file read once), or None if there is none. An
+    entry whose files no longer match their manifest (cut, garbled, missing) or do not parse is
+    moved aside (`<folder>.corrupt-N`) with a `StoreWarning`, and counts as none."""
+    folder = Path(folder)
+    try:
+        recorded = json.loads((folder / MANIFEST).read_text())
+    except FileNotFoundError:
+        return None
+    except (OSError, ValueError):
+        recorded = {}
+    try:
+        files = {name: (folder / name).read_bytes() for name in STORED_FILES}
+        if all(_digest(data) == recorded.get(name) for name, data in files.items()):
+            return _parse(folder, files)
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        pass
+    _move_aside(folder, "curve")
+    return None
 
 
 def stored_curve(mu, *, method="bem", accuracy="default", error_estimate=False,
@@ -231,11 +258,14 @@ def stored_curve(mu, *, method="bem", accuracy="default", error_estimate=False,
     `equilibrium` is the whole curve, unstable branches included (`solve_curve`)."""
     folder = curve_folder(mu, method=method, accuracy=accuracy, error_estimate=error_estimate,
                           unstable_branch=unstable_branch, cache=cache)
-    if is_stored(folder):
-        return read_stored(folder)
+    stored = load_stored(folder)
+    if stored is not None:
+        return stored
     writable_folder(folder.parent, "the store ($ADHESION_CACHE)")  # before solving
     with _entry_lock(folder):
-        if not is_stored(folder):  # another process may have solved it while we waited
+        stored = load_stored(folder)  # another process may have solved it while we waited
+        if stored is None:
             keep(solve_curve(mu, method=method, accuracy=accuracy, error_estimate=error_estimate,
                              unstable_branch=unstable_branch, progress=progress), folder)
-    return read_stored(folder)
+            stored = load_stored(folder)
+    return stored

@@ -32,8 +32,16 @@ from ..plumbing.errors import InputError
 from ..plumbing.files import staged_folder, writable_folder, write_atomic
 from ..plumbing.version import __version__
 from ..solver.presets import METHODS, PRESETS
-from ..solver.solve import solve_curve
-from .store import COST_KEYS, cache_dir, curve_folder, is_stored, keep, read_stored, solver_revision
+from ..solver.solve import MU_RANGE, solve_curve
+from .store import (
+    COST_KEYS,
+    cache_dir,
+    curve_folder,
+    keep,
+    load_stored,
+    mu_key,
+    solver_revision,
+)
 
 #: Columns of curves.csv with their units (dimensionless, the paper's scales).
 CURVE_COLUMNS = {"mu": "-", "path": "approach | retraction", "point": "index along the path",
@@ -47,8 +55,7 @@ EVENT_UNITS = {"p_max": "2 pi R dgamma", "delta_oc": "eps", "delta_o_star": "eps
                "delta_jump_out": "eps", "p_jump_out_before": "2 pi R dgamma",
                "p_jump_out_after": "2 pi R dgamma"}
 #: Units of the cost columns.
-COST_UNITS = {"dofs": "-", "surface_nodes": "-", "points": "-", "newton_iterations": "-",
-              "wall_s": "s (of the solve that stored the curve)"}
+COST_UNITS = {**dict.fromkeys(COST_KEYS, "-"), "wall_s": "s (of the solve that stored the curve)"}
 
 
 @dataclass(frozen=True)
@@ -243,21 +250,23 @@ def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, jobs=No
     cache: the store's folder (default $ADHESION_CACHE). progress: callable(fraction of the
     curves to solve that are done), called as each finishes.
     """
-    # Rounded to the store's key (12 significant digits): μ that share a folder are one μ.
-    mus = sorted({float(f"{float(in_range('mu', m, 0.0, 1e4)):.12g}") for m in np.atleast_1d(mus)})
+    # μ as the store tells them apart (`mu_key`): μ that share a folder are one μ.
+    mus = sorted({mu_key(in_range("mu", m, *MU_RANGE, closed_lo=True))
+                  for m in np.atleast_1d(mus)})
     if not mus:
         raise InputError("a sweep needs at least one mu")
     if method not in METHODS or accuracy not in PRESETS:
         raise InputError(f"method must be one of {', '.join(METHODS)} and accuracy one of "
                          f"{', '.join(PRESETS)}; got {method!r}, {accuracy!r}")
-    jobs = jobs or os.cpu_count() or 1
+    jobs = (os.cpu_count() or 1) if jobs is None else jobs
     if int(jobs) != jobs or jobs < 1:
         raise InputError(f"jobs must be a whole number >= 1; got {jobs!r}")
     writable_folder(cache or cache_dir(), "the store ($ADHESION_CACHE)")  # before solving
     start = time.perf_counter()
     folders = {mu: curve_folder(mu, method=method, accuracy=accuracy,
                                 error_estimate=error_estimate, cache=cache) for mu in mus}
-    todo = [mu for mu in mus if not is_stored(folders[mu])]
+    stored = {mu: load_stored(folders[mu]) for mu in mus}
+    todo = [mu for mu in mus if stored[mu] is None]
     failures = {}
     args = (method, accuracy, error_estimate)
     runs = (_cluster_jobs(scheduler, todo, args) if scheduler
@@ -267,6 +276,7 @@ def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, jobs=No
             failures[mu] = f"{type(result).__name__}: {result}"
         else:
             keep(result, folders[mu])
+            stored[mu] = load_stored(folders[mu])
         if progress is not None:
             progress(done / len(todo))
     rows = []
@@ -274,8 +284,7 @@ def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, jobs=No
         if mu in failures:
             rows.append(SweepRow(mu, "failed", failures[mu]))
         else:
-            stored = read_stored(folders[mu])
-            rows.append(SweepRow(mu, stored.status, stored.message, stored))
+            rows.append(SweepRow(mu, stored[mu].status, stored[mu].message, stored[mu]))
     return Sweep(method, accuracy, error_estimate, tuple(rows), solved=len(todo) - len(failures),
                  stored=len(mus) - len(todo), wall_s=time.perf_counter() - start)
 
