@@ -66,6 +66,9 @@ BEM_GROWTH = 0.1
 #: with 0.0625, half the uniform grid's: the crack tip is a front a few elements wide, and on
 #: elements twice as long it moves in jerks (μ = 10: ripple folds). Not pinned by a test.
 H_COHESIVE_TRACKING = 0.0625
+#: Smallest radius (√(Rε)) of the finely resolved surface strip: the sphere's gap there is at least
+#: 8 ε, where the LJ tension is 0.5% of its peak. Not pinned by a test.
+R_FINE_MIN = 4.0
 #: Methods: finite elements ('fem') or the boundary-integral solver ('bem').
 METHODS = ("fem", "bem")
 #: The error estimate's coarser solve steepens the bulk (FE) or tail (BEM) grading by 5/3, so
@@ -86,6 +89,11 @@ class _Resolution:
         lengths = {k: factor * getattr(self, k) for k in ("h_surface", *self._LENGTHS)}
         return replace(self, name=name, **lengths, **{self._GRADING: grading},
                        trace=replace(self.trace, turn=turn))
+
+    def grids(self, mu, *, solid=Solid(), radius_ratio=None):
+        """The one surface of a curve at `mu` on this discretisation's `elastic()` solid
+        (`FixedGrid`); the edge-following discretisation builds its grids instead."""
+        return FixedGrid(self.elastic(solid), mu, radius_ratio=radius_ratio)
 
     def coarsened(self, factor=2.0):
         """The discretisation of the error estimate: surface elements and the continuation's turn
@@ -124,10 +132,6 @@ class FEDiscretisation(_Resolution):
                            grading=self.grading, layer_thickness=solid.layer_thickness)
         return HalfSpace(mesh, order=self.order, solid=solid)
 
-    def grids(self, mu, *, solid=Solid(), radius_ratio=None):
-        """The one surface of a curve at `mu` (`FixedGrid`)."""
-        return FixedGrid(self.elastic(solid), mu, radius_ratio=radius_ratio)
-
 
 @dataclass(frozen=True)
 class BEMDiscretisation(_Resolution):
@@ -149,10 +153,6 @@ class BEMDiscretisation(_Resolution):
         return BoussinesqSurface(radial_grid(h=self.h_surface, r_fine=self.r_fine,
                                              r_max=self.r_max, growth=self.growth))
 
-    def grids(self, mu, *, solid=Solid(), radius_ratio=None):
-        """The one surface of a curve at `mu` (`FixedGrid`)."""
-        return FixedGrid(self.elastic(solid), mu, radius_ratio=radius_ratio)
-
 
 @dataclass(frozen=True)
 class EdgeDiscretisation(_Resolution):
@@ -165,7 +165,7 @@ class EdgeDiscretisation(_Resolution):
     h_surface: float
     band: float
     h_contact: float
-    r_contact: float = 4.0
+    r_contact: float = R_FINE_MIN
     h_inside: float = H_INSIDE
     r_max: float = TRACTION_RADIUS
     growth: float = BEM_GROWTH
@@ -206,8 +206,8 @@ def discretisation(mu, accuracy="default", *, p_end=1.0, method="fem", track_edg
         raise InputError(f"method must be one of {', '.join(METHODS)}; got {method!r}")
     factor, turn = PRESETS[accuracy]
     trace = TraceSettings(turn=turn, p_end=p_end)
+    r_fine = max(R_FINE_MIN, 1.3 * jkr_radius(p_end, mu))
     if method == "fem":
-        r_fine = max(4.0, 1.3 * jkr_radius(p_end, mu))
         return FEDiscretisation(name=accuracy, h_surface=factor * min(H_MAX, H_COHESIVE * mu**-1.5),
                                 r_fine=r_fine, size=max(DOMAIN_SIZE, 100.0 * r_fine), trace=trace)
     if track_edge or (track_edge is None and mu >= MU_TRACKING):
@@ -218,4 +218,4 @@ def discretisation(mu, accuracy="default", *, p_end=1.0, method="fem", track_edg
             trace=replace(trace, da=min(trace.da, 0.5 * band), front=band))
     return BEMDiscretisation(name=accuracy,
                              h_surface=factor * min(H_MAX_BEM, H_COHESIVE_BEM * mu**-1.5),
-                             r_fine=max(4.0, 1.3 * jkr_radius(p_end, mu)), trace=trace)
+                             r_fine=r_fine, trace=trace)

@@ -17,6 +17,8 @@ from ..solids.operator import ElasticSurface
 #: the onset of jump-in, yet no jump-in found on any refinement tried. tolerance_not_met:
 #: `solve_to_tolerance` ran out of levels.
 STATUSES = ("ok", "no_estimate", "ripples", "missed_jump", "tolerance_not_met")
+#: Folds of δ̄o the physics has at most: one jump-in and one jump-out; more are ripple.
+PHYSICAL_FOLDS = 2
 
 
 def worst_status(*statuses):
@@ -70,7 +72,7 @@ class CurveResult:
     @property
     def ripples(self):
         """More folds than one jump-in and one jump-out: the sign of a surface mesh too coarse."""
-        return self.folds > 2
+        return self.folds > PHYSICAL_FOLDS
 
     def records(self):
         """JSON-ready dict: the command line's keys (dimensionless, tensile forces negative)."""

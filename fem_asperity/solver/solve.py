@@ -24,7 +24,7 @@ from ..plumbing.checks import in_range, positive
 from ..plumbing.errors import InputError
 from ..solids.fe import Solid
 from .presets import discretisation
-from .result import CurveResult, Model, worst_status
+from .result import PHYSICAL_FOLDS, CurveResult, Model, worst_status
 
 #: BLAS threads while a curve is set up and traced, 1: its dense factorisations (n ≈ 100-3000)
 #: ran slower with two threads than with one on a two-core machine, and the second core is better
@@ -67,7 +67,7 @@ def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, unstable_br
     folds = int(curve.branch.max()) if unstable_branch else len(jumps_in) + len(jumps_out)
     message = f"{folds} folds of the equilibrium curve" + grids.summary()
     status = "ok"
-    if folds > 2:
+    if folds > PHYSICAL_FOLDS:
         status = "ripples"
         message += (" (more than one jump-in and one jump-out: probably ripple from a surface "
                     "mesh too coarse for this mu; try a finer accuracy)")
@@ -96,13 +96,16 @@ def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, unstable_br
 def _solve_with_its_jump(mu, disc, *, progress=None, **options):
     """`solve_discretised`; where a homogeneous Derjaguin curve above MU_ONSET_HI shows no
     jump-in, again on discretisations refined (`refined()`) up to MISSED_JUMP_REFINEMENTS times
-    until it does; its status is 'missed_jump' if it never does."""
+    until it does; its status is 'missed_jump' if it never does. Returns (result, missed): missed
+    is the solve before the refinement that found the jump (None without one), twice as coarse:
+    the error estimate's partner then, as the preset's coarser solve would compare against a
+    discretisation that misses the jump too."""
     result = solve_discretised(mu, disc, progress=progress, **options)
     must_jump = (mu > MU_ONSET_HI and options["solid"].layer_thickness is None
                  and options["radius_ratio"] is None)
     if not must_jump or result.events.jump_in is not None:
-        return result
-    wall, finer = result.wall_s, disc
+        return result, None
+    wall, finer, missed = result.wall_s, disc, result
     for level in range(1, MISSED_JUMP_REFINEMENTS + 1):
         finer = finer.refined()
         retried = solve_discretised(mu, finer, **options)
@@ -110,11 +113,12 @@ def _solve_with_its_jump(mu, disc, *, progress=None, **options):
         if retried.events.jump_in is not None:
             note = (f"; no jump-in at '{disc.name}' although mu is above the onset: solved "
                     f"again on a discretisation refined {level} time(s)")
-            return replace(retried, message=retried.message + note, wall_s=wall)
+            return replace(retried, message=retried.message + note, wall_s=wall), missed
+        missed = retried
     note = (f"; no jump-in although mu is above the onset, also refined "
             f"{MISSED_JUMP_REFINEMENTS} times: try --tolerance or a finer accuracy")
     return replace(result, status=worst_status(result.status, "missed_jump"),
-                   message=result.message + note, wall_s=wall)
+                   message=result.message + note, wall_s=wall), None
 
 
 def _difference(fine, coarse):
@@ -151,15 +155,15 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     disc = discretisation(mu, accuracy, p_end=p_end, method=method)
     options = dict(solid=solid, radius_ratio=radius_ratio, unstable_branch=unstable_branch)
     if not error_estimate:
-        return _solve_with_its_jump(mu, disc, progress=progress, **options)
+        return _solve_with_its_jump(mu, disc, progress=progress, **options)[0]
     start = time.perf_counter()
     # The coarser solve runs in a second thread: the dense factorisations release the GIL, so
     # the two curves share the two cores (one BLAS thread each).
     with threadpool_limits(PATH_BLAS_THREADS, user_api="blas"), ThreadPoolExecutor(1) as pool:
         coarse_job = pool.submit(solve_discretised, mu, disc.coarsened(), **options)
-        result = _solve_with_its_jump(mu, disc, progress=progress, **options)
+        result, missed = _solve_with_its_jump(mu, disc, progress=progress, **options)
         try:
-            coarse = coarse_job.result()
+            coarse = coarse_job.result() if missed is None else missed
             estimate, note, status = _difference(result, coarse), "", result.status
             if coarse.ripples:
                 note = ("; the coarser solve of the error estimate ripples (more than two folds), "
