@@ -1,16 +1,11 @@
 """The verification report: a provenance line, the closed-form checks, the single-asperity and
 rough-surface sections, and the paper's items not yet judged."""
 
-import os
-import platform
-import subprocess
 from datetime import datetime, timezone
 from pathlib import Path
 
-import numpy
-import scipy
-
 import fem_asperity
+from fem_asperity.plumbing.provenance import git_commit, machine
 
 #: Items of the paper not yet judged, with what would judge them.
 PENDING = (
@@ -21,48 +16,19 @@ PENDING = (
 HERE = Path(__file__).resolve().parent
 
 
-def _git(*args):
-    """Output of a git command run in the package's folder; None outside a checkout."""
-    try:
-        done = subprocess.run(["git", *args], cwd=HERE, capture_output=True, text=True,
-                              timeout=10, check=True)
-    except (OSError, subprocess.SubprocessError):
-        return None
-    return done.stdout.strip()
-
-
-def git_commit():
-    """Short hash of HEAD ("unknown" outside a git checkout), marked when tracked files differ."""
-    head = _git("rev-parse", "--short", "HEAD")
-    if not head:
-        return "unknown"
-    dirty = _git("status", "--porcelain", "--untracked-files=no")
-    return head + (" + uncommitted changes" if dirty else "")
-
-
-def processor():
-    """The processor's model name where Linux tells it, else what `platform` knows."""
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as cpuinfo:
-            models = [line.split(":", 1)[1].strip() for line in cpuinfo
-                      if line.startswith("model name")]
-    except OSError:
-        models = []
-    name = models[0] if models else platform.processor()
-    return ", ".join(dict.fromkeys(n for n in (name, platform.machine()) if n))
-
-
-def machine():
+def machine_phrase():
     """Processor, core count and the versions the numbers depend on, in one phrase."""
-    return (f"{processor()}, {os.cpu_count()} cores, Python {platform.python_version()}, "
-            f"numpy {numpy.__version__}, scipy {scipy.__version__}")
+    m = machine()
+    cpu = ", ".join(n for n in (m["cpu"], m["arch"]) if n)
+    return (f"{cpu}, {m['cpu_count']} cores, Python {m['python']}, numpy {m['numpy']}, "
+            f"scipy {m['scipy']}")
 
 
 def provenance(command):
     """The report's first line: how to regenerate it, and from which code, when and where."""
     now = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     return (f"Regenerate with `{command}`. Package version {fem_asperity.__version__}, "
-            f"commit {git_commit()}, {now}, on {machine()}.")
+            f"commit {git_commit(HERE) or 'unknown'}, {now}, on {machine_phrase()}.")
 
 
 def render(checks, files, command, rough="", single="", wall_s=None):
