@@ -46,8 +46,9 @@ def test_every_command_has_a_version_and_names_its_subcommands(package):
     done = cli(package, "--version")
     assert done.returncode == 0 and done.stdout.split()[-1] == __version__
     shown = cli(package, "--help").stdout
-    commands = {"fem_asperity": ("laws", "scales", "curve", "onset"), "gw": ("fmax", "curve"),
-                "validation": ("all", "rough-surface")}[package]
+    commands = {"fem_asperity": ("laws", "scales", "curve", "sweep", "onset"),
+                "gw": ("fmax", "curve"),
+                "validation": ("all", "single-asperity", "rough-surface")}[package]
     assert all(c in shown for c in commands)
 
 

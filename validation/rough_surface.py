@@ -92,14 +92,14 @@ def omega_sensitivity():
             for w in (0.5, 0.8, 1.0)}
 
 
-def law_comparison(mus, *, method="bem", accuracy="default", sigmas=(0.5, 1.0, 2.0),
-                   refit_method="bem", progress=None):
+def law_comparison(mus, refitted, *, method="bem", accuracy="default", sigmas=(0.5, 1.0, 2.0),
+                   progress=None):
     """Paper law vs the tabulated solved law at each μ and σ: F̄max of both, the largest |ΔF̄|
     where either F̄ is adhesive (< 0) and the largest |ΔS̄|/max S̄, over d̃ ∈ [0, 8], with where
-    they occur (below d̃ = 0 the repulsive Hertz parts dominate both)."""
+    they occur (below d̃ = 0 the repulsive Hertz parts dominate both). `refitted`: the
+    `AsperityLaws` of the refit, compared too."""
     rows = []
     d = np.linspace(0.0, 8.0, 161)
-    refitted = stored_refit(method=refit_method, accuracy=accuracy).laws
     for mu in mus:
         law = solved_law(mu, method=method, accuracy=accuracy, progress=progress)
         paper = PaperLaw(mu)
@@ -244,8 +244,7 @@ def run(out, *, compare_mu=COMPARISON_MU, accuracy="default", refit_method="bem"
     summary["refit"] = {"laws": asdict(fit.laws), "paper": asdict(PAPER_LAWS),
                         "residuals": fit.residuals, "mu": fit.mu, "method": fit.method,
                         "accuracy": fit.accuracy}
-    summary["law_comparison"] = law_comparison(compare_mu, accuracy=accuracy,
-                                               refit_method=refit_method)
+    summary["law_comparison"] = law_comparison(compare_mu, fit.laws, accuracy=accuracy)
     write_atomic(out / "rough_surface.json", json.dumps(summary, indent=1, allow_nan=False))
     save_figure(plot(data, spread), out / "rough_surface.png")
     save_figure(plot_comparison(compare_mu, eps_nm=EPS_NM, accuracy=accuracy),

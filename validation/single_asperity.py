@@ -17,7 +17,7 @@ from scipy.integrate import trapezoid
 from scipy.optimize import brentq, curve_fit
 from scipy.stats import t as student
 
-from fem_asperity.closed_forms.laws import PAPER_LAWS
+from fem_asperity.closed_forms.laws import PAPER_LAWS, wu_pull_off
 from fem_asperity.plumbing.files import write_atomic
 from fem_asperity.solver.output import state_index, write_fields
 from fem_asperity.solver.solve import solve_curve
@@ -45,15 +45,10 @@ LOOP_ROUNDING = 1e-12
 PAPER_CONTINUOUS_BELOW = 0.5
 
 
-def _wu(mu, c):
-    k = c * mu**1.5
-    return -(7.0 + (1.0 - k) / (1.0 + k)) / 8.0
-
-
 #: Each fit: (report keys, AsperityLaws constants, model(μ, *constants), event, which μ, the
 #: law's offset: what is subtracted to leave the part that varies with μ).
 LAW_FITS = (
-    (("eq2_coeff",), ("c_off",), _wu, "p_off", "all", -1.0),
+    (("eq2_coeff",), ("c_off",), wu_pull_off, "p_off", "all", -1.0),
     (("eq6_coeff", "eq6_threshold"), ("c_a", "mu_a"),
      lambda mu, c, m: c * np.sqrt(np.maximum(mu - m, 0.0)), "a_c", "all", 0.0),
     (("eq7_slope",), ("c_oc",), lambda mu, c: 1.0 + c * mu, "delta_oc", "continuous", 1.0),
@@ -93,8 +88,9 @@ def refit_with_intervals(rows, onset):
     mu_range, points}})."""
     mu, ranges, refit, deviations = _column(rows, "mu"), _ranges(rows, onset), {}, {}
     for keys, names, model, event, which, offset in LAW_FITS:
-        use = ranges[which] & np.isfinite(_column(rows, event))
-        x, y = mu[use], _column(rows, event)[use]
+        values = _column(rows, event)
+        use = ranges[which] & np.isfinite(values)
+        x, y = mu[use], values[use]
         paper = [getattr(PAPER_LAWS, n) for n in names]
         mu_range = [float(x.min()), float(x.max())]
         values, lo, hi = _fit(model, x, y, paper)
@@ -159,10 +155,11 @@ def verdicts(rows, onset, deviations, transition):
         found.append(_verdict(claim, 0.19, transition, abs(transition - 0.19) / transition,
                               CONSTANT_TOLERANCE))
     else:
-        below = [r["mu"] for r in rows if not r["jump_in"] and r["mu"] < onset]
-        precedes = all(r["delta_o_star"] > r["delta_oc"] for r in rows if r["mu"] in below)
+        below = [r for r in rows if not r["jump_in"] and r["mu"] < onset]
+        precedes = all(r["delta_o_star"] > r["delta_oc"] for r in below)
         found.append({"claim": claim, "paper": 0.19,
-                      "measured": (f"no transition in [{min(below):g}, {max(below):g}]: "
+                      "measured": (f"no transition in [{below[0]['mu']:g}, "
+                                   f"{below[-1]['mu']:g}]: "
                                    + ("contact precedes P_max at every mu" if precedes else
                                       "P_max precedes contact at every mu")),
                       "error": None, "holds": False})

@@ -2,6 +2,8 @@
 with the FE's error estimate as error bars), the BEM as a line, the paper's law dashed and the
 refit dotted; and the hysteresis loops (beyond the paper)."""
 
+from dataclasses import replace
+
 import numpy as np
 from matplotlib.figure import Figure
 
@@ -34,14 +36,14 @@ def _line(ax, rows, key, label, style="-", color="tab:blue"):
             label=label)
 
 
-def fig3(rows, bem, refit):
+def fig3(rows, bem, refitted):
     fig = Figure(figsize=(6, 4.5), layout="constrained")
     ax = fig.subplots()
     mu = np.geomspace(min(r["mu"] for r in rows), max(r["mu"] for r in rows), 200)
     _points(ax, rows, "a_c", "FE (error estimate)")
     _line(ax, bem, "a_c", "BEM")
     ax.plot(mu, PAPER_LAWS.a_c(mu), "--", color="tab:red", label="eq. 6 (paper)")
-    ax.plot(mu, _refit_laws(refit).a_c(mu), ":", color="tab:green", label="eq. 6 refitted")
+    ax.plot(mu, refitted.a_c(mu), ":", color="tab:green", label="eq. 6 refitted")
     ax.plot(mu, jkr_compressive_radius(mu=mu), "-.", color="grey", label="JKR (eq. A9)")
     ax.set(xscale="log", xlabel=r"Tabor parameter $\mu$",
            ylabel=r"$\bar a_c = a_c/\sqrt{\varepsilon R}$ at $\bar P_{max}$",
@@ -49,13 +51,13 @@ def fig3(rows, bem, refit):
     return fig
 
 
-def fig4(rows, bem, refit, onset):
+def fig4(rows, bem, refitted, onset):
     fig = Figure(figsize=(6, 4.5), layout="constrained")
     ax = fig.subplots()
     below = [r for r in rows if r["mu"] < onset]
     bem_below = [r for r in bem if r["mu"] < onset]
     mu = np.linspace(min(r["mu"] for r in below), onset, 200)
-    laws, refitted = PAPER_LAWS, _refit_laws(refit)
+    laws = PAPER_LAWS
     for key, color in (("delta_oc", "k"), ("delta_o_star", "tab:purple")):
         _points(ax, below, key, f"FE {key}", color=color)
         _line(ax, bem_below, key, f"BEM {key}", color=color)
@@ -95,13 +97,12 @@ def fig5(rows, bem):
     return fig
 
 
-def fig6(rows, bem, refit, onset):
+def fig6(rows, bem, refitted, onset):
     fig = Figure(figsize=(10, 4.2), layout="constrained")
     left, right = fig.subplots(1, 2)
     above = [r for r in rows if r["jump_in"]]
     bem_above = [r for r in bem if r["jump_in"]]
     mu = np.linspace(onset, max(r["mu"] for r in above), 200)
-    refitted = _refit_laws(refit)
     # The paper puts P_max at the jump-in (eq. 13 gives both δ_oc and δ_o* there): its δ_oc is
     # compared with the FE's separation at the jump, the FE's δ_o at P_max shown beside it.
     for ax, key, ylabel, law in ((left, "x_oc", r"$\bar x_{oc}$ (gap at jump-in, in $\varepsilon$)",
@@ -115,7 +116,7 @@ def fig6(rows, bem, refit, onset):
             ax.plot([r["mu"] for r in above], [r["delta_oc"] for r in above], "s", ms=4,
                     mfc="none", color="k", label=r"FE $\bar\delta_o$ at $\bar P_{max}$")
         paper_values = getattr(AsperityLaws(mu_jump=onset), law)(mu)
-        refit_values = getattr(AsperityLaws(**{**refitted.__dict__, "mu_jump": onset}), law)(mu)
+        refit_values = getattr(replace(refitted, mu_jump=onset), law)(mu)
         ax.plot(mu, paper_values, "--", color="tab:red", label="paper (eqs. 12, 13)")
         ax.plot(mu, refit_values, ":", color="tab:green", label="refitted")
         ax.axvline(onset, color="grey", lw=0.8, label=f"measured onset {onset:.3f}")
@@ -147,7 +148,7 @@ def fig7(rows):
         # (eq. 19).
         a_first = row["a_c_after"] or 0.0
         ya = (path.area[touching] - np.pi * a_first**2) * ratio / np.pi
-        area.plot(xa, ya, "o", ms=2.5, color=f"C{k}", label=f"FE, μ = {mu:g}")
+        area.plot(xa, ya, "o", ms=2.5, color=f"C{k}", label="_nolegend_")  # force's legend
         largest = max(largest, x.max(initial=0.0), xa.max(initial=0.0))
     x = np.linspace(0.0, largest, 100)
     force.plot(x, x**1.5, "k--", label="Hertz")
@@ -185,7 +186,6 @@ def loops(rows, energies, bem_energies, whole):
                xlabel=r"$\bar\delta_o$", ylabel=r"$\bar P$",
                title=f"μ = {mu:g}: dissipated " + (f"{energy:.3g} (2πRΔγ ε)" if energy > 1e-9
                                                    else "0 (no jumps)"))
-        ax.grid(alpha=0.3)
     fig.axes[0].legend(fontsize=8)
     energy = panels[2]
     energy.plot([float(m) for m in energies], list(energies.values()), "o", color="k", label="FE")
@@ -202,14 +202,15 @@ def loops(rows, energies, bem_energies, whole):
 
 def save_figures(folder, rows, bem, refit, onset, energies, bem_energies, whole):
     """Write fig3.png ... fig7.png and hysteresis.png into `folder`; their paths."""
-    figures = {"fig3": fig3(rows, bem, refit), "fig4": fig4(rows, bem, refit, onset),
-               "fig5": fig5(rows, bem), "fig6": fig6(rows, bem, refit, onset),
+    refitted = _refit_laws(refit)
+    figures = {"fig3": fig3(rows, bem, refitted), "fig4": fig4(rows, bem, refitted, onset),
+               "fig5": fig5(rows, bem), "fig6": fig6(rows, bem, refitted, onset),
                "fig7": fig7(rows), "hysteresis": loops(rows, energies, bem_energies, whole)}
     paths = []
     for name, fig in figures.items():
         for ax in fig.axes:
             ax.grid(alpha=0.3)
-            if ax.get_legend() is None and ax.get_legend_handles_labels()[0] and name != "fig7":
+            if ax.get_legend() is None and ax.get_legend_handles_labels()[0]:
                 ax.legend(fontsize=8)
         paths.append(save_figure(fig, folder / f"{name}.png"))
     return paths

@@ -24,6 +24,13 @@ def _mu(mu):
     return in_range("mu", mu, 0.0, MU_MAX)
 
 
+def wu_pull_off(mu, c_off):
+    """Wu's fit of the pull-off force (eq. 2): −(1/8)(7 + (1 − c μ^1.5)/(1 + c μ^1.5)), in 2πRΔγ;
+    μ unchecked (for fits that vary c)."""
+    k = c_off * mu**1.5
+    return -(7.0 + (1.0 - k) / (1.0 + k)) / 8.0
+
+
 def _out(x):
     """A 0-d result as a Python float or bool, arrays unchanged."""
     return np.asarray(x).item() if np.ndim(x) == 0 else x
@@ -96,9 +103,8 @@ class AsperityLaws:
         return _out(_mu(mu) >= self.mu_jump)
 
     def p_max(self, mu):
-        """Maximum adhesive force, Wu's fit (eq. 2): −(1/8)(7 + (1 − c μ^1.5)/(1 + c μ^1.5))."""
-        k = self.c_off * _mu(mu) ** 1.5
-        return _out(-(7.0 + (1.0 - k) / (1.0 + k)) / 8.0)
+        """Maximum adhesive force, Wu's fit (eq. 2) with c = c_off (`wu_pull_off`)."""
+        return _out(wu_pull_off(_mu(mu), self.c_off))
 
     def a_c(self, mu):
         """Compressive contact radius at P̄max (eq. 6): c_a (μ − mu_a)^½, zero below mu_a."""

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from ..closed_forms.laws import AsperityLaws
+from ..closed_forms.laws import AsperityLaws, wu_pull_off
 from .onset import stored_onset
 from .store import cache_dir, code_revision, stored_curve, stored_json
 
@@ -37,11 +37,6 @@ class Refit:
     mu: tuple
     method: str
     accuracy: str
-
-
-def _wu(mu, c):
-    k = c * mu**1.5
-    return -(7.0 + (1.0 - k) / (1.0 + k)) / 8.0
 
 
 def _line(x, y, *, through_origin=False):
@@ -67,7 +62,7 @@ def refit(mus=REFIT_MU, *, method="bem", accuracy="default", progress=None):
     col = {k: np.array([np.nan if e[k] is None else e[k] for e in events], float)
            for k in ("p_off", "a_c", "delta_oc", "delta_o_star", "x_oc")}
     jump = np.array([e["jump_in"] for e in events])
-    c_off = minimize_scalar(lambda c: np.sum((_wu(mu, c) - col["p_off"]) ** 2),
+    c_off = minimize_scalar(lambda c: np.sum((wu_pull_off(mu, c) - col["p_off"]) ** 2),
                             bounds=(0.1, 10.0), method="bounded", options={"xatol": 1e-10}).x
     touching = col["a_c"] > 0.0
     a0, a1, ra = _line(mu[touching], col["a_c"][touching] ** 2)
@@ -79,7 +74,7 @@ def refit(mus=REFIT_MU, *, method="bem", accuracy="default", progress=None):
     onset = stored_onset(method=method, accuracy=accuracy).mu_onset
     laws = AsperityLaws(c_off=float(c_off), c_a=float(c_a), mu_a=float(mu_a), c_oc=c_oc,
                         c_star=c_star, x_0=x_0, x_1=x_1, mu_jump=float(onset))
-    residuals = {"p_off (eq. 2)": _stats(_wu(mu, c_off) - col["p_off"]),
+    residuals = {"p_off (eq. 2)": _stats(wu_pull_off(mu, c_off) - col["p_off"]),
                  "a_c^2 (eq. 6b)": _stats(ra), "delta_oc (eq. 7)": _stats(roc),
                  "delta_o_star (eq. 10)": _stats(rst), "x_oc (eq. 12)": _stats(rx)}
     if progress:
