@@ -176,10 +176,12 @@ def _curve(args, parser):
     if args.json:
         dump_json(row)
     else:
-        flat = {k: v for k, v in row.items() if k != "error_estimate"}
-        errors = row["error_estimate"] or {}
-        print_table([{"quantity": k, "value": v, "error_estimate": errors.get(k)}
-                     for k, v in flat.items()], ("quantity", "value", "error_estimate"))
+        estimates = ("error_estimate", "relative_error_estimate")
+        absolute, relative = (row[key] or {} for key in estimates)
+        print_table([{"quantity": k, "value": v, "error_estimate": absolute.get(k),
+                      "relative": relative.get(k)}
+                     for k, v in row.items() if k not in estimates],
+                    ("quantity", "value", "error_estimate", "relative"))
     return 0
 
 

@@ -140,18 +140,59 @@ def test_a_curve_above_the_onset_that_misses_its_jump_is_refined_until_it_jumps(
 
 
 def test_a_failing_error_estimate_never_costs_the_result(monkeypatch):
-    """Whatever stops the coarser solve (here an input error from inside it, as the grid of a
-    diverged coarse state raised at mu = 9, BEM draft), the curve is kept without an estimate."""
+    """Whatever stops the estimate's solve (here an input error from inside it, as the grid of a
+    diverged state raised at mu = 9, BEM draft), the curve is kept without an estimate."""
     import fem_asperity.solver.solve as solve
 
     real = solve.solve_discretised
 
-    def failing_coarse(mu, disc, **kwargs):
-        if disc.name.endswith("/coarse"):
-            raise InputError("need 0 < h <= band (from inside the coarse solve)")
+    def failing_estimate(mu, disc, **kwargs):
+        if disc.name.endswith("/estimate"):
+            raise InputError("need 0 < h <= band (from inside the estimate's solve)")
         return real(mu, disc, **kwargs)
 
-    monkeypatch.setattr(solve, "solve_discretised", failing_coarse)
+    monkeypatch.setattr(solve, "solve_discretised", failing_estimate)
     result = solve.solve_curve(1.0, method="bem", accuracy="draft")
     assert result.error_estimate is None and result.status == "no_estimate"
     assert "InputError" in result.message and result.events.jump_in is not None
+
+
+@pytest.mark.parametrize("mu", [2.5, 3.0, pytest.param(5.0, marks=pytest.mark.slow)])
+def test_presets_do_not_ripple(mu):
+    """Every preset stays below the ripple-free element size RIPPLE_FREE μ⁻²: the BEM `draft`
+    rippled at these μ (3, 6 and 22 folds) before its elements were capped there."""
+    result = solve_curve(mu, method="bem", accuracy="draft", error_estimate=False)
+    assert result.folds == 2 and result.status == "ok" and result.accuracy == "draft"
+
+
+def test_a_rippling_curve_is_refined_and_reports_the_physical_jumps():
+    """Elements as long as the old `draft`'s at μ = 3 ripple (6 folds); the jump-out read off
+    that curve is still the last fold, the separation (within 1e-3 of the refined curve's; the
+    first fold was a ripple), and the solve refines once to a curve without ripple."""
+    from fem_asperity.solver.solve import _solve_refining
+
+    mu = 3.0
+    disc = replace(discretisation(mu, "draft", method="bem"), h_surface=0.25 * mu**-1.5,
+                   h_ripple=np.inf)
+    rippled = solve_discretised(mu, disc)
+    assert rippled.ripples and rippled.status == "ripples"
+    result, solved_on = _solve_refining(mu, disc, solid=Solid(), radius_ratio=None,
+                                        unstable_branch=False)
+    assert result.folds == 2 and result.status == "ok" and "refined 1 time" in result.message
+    assert solved_on.h_surface == disc.h_surface / 2
+    assert rippled.events.jump_out.delta == pytest.approx(result.events.jump_out.delta, rel=1e-3)
+    assert rippled.events.jump_in.delta == pytest.approx(result.events.jump_in.delta, rel=1e-6)
+
+
+def test_error_estimate_bounds_the_error_without_overstating_it():
+    """BEM `default` at μ = 3 against a BEM twice as fine as `fine`: each estimated event's
+    error is at most its estimate and at least a tenth of it (where the error is above the
+    continuation's tolerance, 1e-8); relative_error_estimate is the same relative to the event."""
+    result = solve_curve(3.0, method="bem", accuracy="default")
+    reference = solve_discretised(3.0, discretisation(3.0, "fine", method="bem").refined())
+    a, b = result.events.records(), reference.events.records()
+    for key, estimate in result.error_estimate.items():
+        error = abs(a[key] - b[key])
+        if error > 1e-8:
+            assert error <= estimate <= 10 * error, key
+        assert result.relative_error_estimate[key] == pytest.approx(estimate / abs(a[key]))

@@ -8,8 +8,7 @@ from fem_asperity.plumbing.errors import InputError
 from fem_asperity.solids.fe import Solid
 from fem_asperity.solids.operator import ElasticSurface
 from fem_asperity.solver.presets import (
-    COARSE_GRADING,
-    MAX_TURN,
+    ESTIMATE_GRADING,
     BEMDiscretisation,
     EdgeDiscretisation,
     FEDiscretisation,
@@ -42,15 +41,14 @@ def test_each_discretisation_builds_grids_of_the_grids_interface(mu, method, kin
 def test_coarsening_and_refinement_keep_the_type_and_scale_its_lengths(mu, method, track, kind,
                                                                       grading):
     fine = discretisation(mu, "default", method=method, track_edge=track)
-    coarse, finer = fine.coarsened(), fine.refined()
-    assert type(fine) is type(coarse) is type(finer) is kind
-    assert coarse.h_surface == 2 * fine.h_surface and finer.h_surface == fine.h_surface / 2
-    assert getattr(coarse, grading) == pytest.approx(COARSE_GRADING * getattr(fine, grading))
+    partner, finer = fine.for_estimate(), fine.refined()
+    assert type(fine) is type(partner) is type(finer) is kind
+    assert partner.h_surface == finer.h_surface == fine.h_surface / 2
+    assert getattr(partner, grading) == pytest.approx(getattr(fine, grading) / ESTIMATE_GRADING)
     assert getattr(finer, grading) == getattr(fine, grading)
-    assert coarse.trace.turn == min(2 * fine.trace.turn, MAX_TURN)
-    assert finer.trace.turn == fine.trace.turn / 2
+    assert partner.trace.turn == finer.trace.turn == fine.trace.turn / 2
     if kind is EdgeDiscretisation:
-        assert coarse.h_contact == 2 * fine.h_contact and coarse.band == fine.band
+        assert partner.h_contact == fine.h_contact / 2 and partner.band == fine.band
 
 
 @pytest.mark.parametrize("track", [None, True])

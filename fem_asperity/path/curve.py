@@ -131,7 +131,10 @@ def _initial_contact(path):
 
 
 def read_events(approach, retraction, jumps_in, jumps_out):
-    """`Events` from the two displacement-control paths and their jumps (first jump of each)."""
+    """`Events` from the two displacement-control paths and their jumps: the first jump of the
+    approach and the last of the retraction (a curve that ripples folds more often while its
+    contact edge moves; the jump into contact comes before those folds and the separation after
+    them: test_bem_curve.py::test_a_rippling_curve_is_refined_and_reports_the_physical_jumps)."""
     p_max, delta_oc, a_c = _most_tensile(approach)
     p_off, delta_off, _ = _most_tensile(retraction)
     return Events(
@@ -142,5 +145,5 @@ def read_events(approach, retraction, jumps_in, jumps_out):
         p_off=p_off,
         delta_off=delta_off,
         jump_in=jumps_in[0] if jumps_in else None,
-        jump_out=jumps_out[0] if jumps_out else None,
+        jump_out=jumps_out[-1] if jumps_out else None,
     )

@@ -1,9 +1,9 @@
 """Accuracy presets: how fine the surface discretisation and the continuation are for a given μ.
 
 The surface element size follows the cohesive zone at the contact edge, whose width shrinks like
-μ^(−3/2) √(Rε); the finely meshed strip covers the JKR contact radius at the deepest load. At
-large μ the FE's quadratic elements need nodes closer together than the boundary-integral
-method's linear ones to keep the force curve free of ripple (H_COHESIVE against H_COHESIVE_BEM).
+μ^(−3/2) √(Rε), and stays below the ripple-free limit RIPPLE_FREE μ^(−2), which shrinks faster:
+on longer elements the contact edge moves from node to node in jerks and the force curve shows
+false folds. The finely meshed strip covers the JKR contact radius at the deepest load.
 """
 
 from dataclasses import dataclass, replace
@@ -69,18 +69,29 @@ H_COHESIVE_TRACKING = 0.0625
 #: Smallest radius (√(Rε)) of the finely resolved surface strip: the sphere's gap there is at least
 #: 8 ε, where the LJ tension is 0.5% of its peak. Not pinned by a test.
 R_FINE_MIN = 4.0
+#: Largest surface element on which a curve has no ripple folds, RIPPLE_FREE[grid] · μ^(−2) √(Rε),
+#: per grid ('fem', 'bem' uniform, 'edge' following): the largest measured ripple-free size
+#: (`python benchmarks/ripple.py` → results/ripple.md; the ripple onset of h μ² falls between
+#: 0.28 and 0.31 for the uniform BEM at μ = 2.5-5, 0.38 and 0.40 for the edge-following grids at
+#: μ = 9-10); test_bem_curve.py::test_presets_do_not_ripple pins the BEM at the presets.
+RIPPLE_FREE = {"fem": 0.45, "bem": 0.28, "edge": 0.33}
+#: Presets stay this factor below the ripple-free size: it was measured at a few μ only. Not
+#: pinned by a test.
+RIPPLE_MARGIN = 1.25
 #: Methods: finite elements ('fem') or the boundary-integral solver ('bem').
 METHODS = ("fem", "bem")
-#: The error estimate's coarser solve steepens the bulk (FE) or tail (BEM) grading by 5/3, so
-#: the estimate also sees the bulk mesh (FE grading 1/3 puts a uniform disc's centre deflection
-#: 4e-5 off, 0.2 7e-6); test_bem_curve.py::test_bem_agrees_with_fem_within_the_fem_error_estimate.
-COARSE_GRADING = 5.0 / 3.0
+#: The error estimate's finer solve grades the bulk (FE) or tail (BEM) twice as gently, so the
+#: estimate also sees the bulk mesh, which dominates the FE's δ̄oc error at small μ (μ = 0.5: 6e-7
+#: off at grading 0.2, 2e-8 at 0.067; with 5/3 the estimate missed it by 10%, 3 cost 5 times as
+#: much as 2); test_bem_curve.py::test_bem_agrees_with_fem_within_the_fem_error_estimate.
+ESTIMATE_GRADING = 2.0
 
 
 class _Resolution:
     """What the three discretisations share: a preset `name`, the surface element length
-    `h_surface` (√(Rε)), the continuation's `trace` settings, and coarsening and refinement.
-    Each subclass names its grading field in `_GRADING` and its other lengths in `_LENGTHS`."""
+    `h_surface` and the ripple-free limit `h_ripple` (√(Rε)), the continuation's `trace`
+    settings, and coarsening and refinement. Each subclass names its grading field in `_GRADING`
+    and its other lengths in `_LENGTHS`."""
 
     _GRADING = "grading"
     _LENGTHS = ()
@@ -95,20 +106,20 @@ class _Resolution:
         (`FixedGrid`); the edge-following discretisation builds its grids instead."""
         return FixedGrid(self.elastic(solid), mu, radius_ratio=radius_ratio)
 
-    def coarsened(self, factor=2.0):
-        """The discretisation of the error estimate: surface elements and the continuation's turn
-        limit `factor` times larger, the grading COARSE_GRADING times as steep (at most 1), so
-        the estimate also sees the bulk or tail and the sampling of the curve (P̄off moves by
-        3e-5 at μ = 1 from turn 0.1 to 0.02). The turn stays ≤ MAX_TURN."""
-        grading = min(1.0, getattr(self, self._GRADING) * COARSE_GRADING)
-        return self._scaled(f"{self.name}/coarse", factor, grading,
-                            min(self.trace.turn * factor, MAX_TURN))
-
     def refined(self):
-        """The next level of a tolerance-driven solve: surface elements and turn limit halved
-        (the grading kept: the FE's puts a disc's deflection 7e-6 off)."""
-        return self._scaled(f"{self.name}/2", 0.5, getattr(self, self._GRADING),
-                            0.5 * self.trace.turn)
+        """The next level of a tolerance-driven solve, or after a curve rippled: surface
+        elements and turn limit halved (the grading kept: the FE's puts a disc's deflection 7e-6
+        off); the ripple-free limit RIPPLE_MARGIN below the old elements, which may have
+        rippled."""
+        return replace(self._scaled(f"{self.name}/2", 0.5, getattr(self, self._GRADING),
+                                    0.5 * self.trace.turn),
+                       h_ripple=min(self.h_ripple, self.h_surface / RIPPLE_MARGIN))
+
+    def for_estimate(self):
+        """The discretisation of the error estimate: `refined()`, and the bulk (FE) or tail
+        (BEM) graded ESTIMATE_GRADING times more gently, so that the estimate also sees them."""
+        return replace(self.refined(), name=f"{self.name}/estimate",
+                       **{self._GRADING: getattr(self, self._GRADING) / ESTIMATE_GRADING})
 
 
 @dataclass(frozen=True)
@@ -120,6 +131,7 @@ class FEDiscretisation(_Resolution):
     name: str
     h_surface: float
     r_fine: float
+    h_ripple: float = np.inf
     size: float = DOMAIN_SIZE
     grading: float = FE_GRADING
     order: int = 2
@@ -141,6 +153,7 @@ class BEMDiscretisation(_Resolution):
     name: str
     h_surface: float
     r_fine: float
+    h_ripple: float = np.inf
     r_max: float = TRACTION_RADIUS
     growth: float = BEM_GROWTH
     trace: TraceSettings = TraceSettings()
@@ -165,6 +178,7 @@ class EdgeDiscretisation(_Resolution):
     h_surface: float
     band: float
     h_contact: float
+    h_ripple: float = np.inf
     r_contact: float = R_FINE_MIN
     h_inside: float = H_INSIDE
     r_max: float = TRACTION_RADIUS
@@ -207,15 +221,21 @@ def discretisation(mu, accuracy="default", *, p_end=1.0, method="fem", track_edg
     factor, turn = PRESETS[accuracy]
     trace = TraceSettings(turn=turn, p_end=p_end)
     r_fine = max(R_FINE_MIN, 1.3 * jkr_radius(p_end, mu))
+    edge = method == "bem" and (track_edge or (track_edge is None and mu >= MU_TRACKING))
+    h_ripple = RIPPLE_FREE["edge" if edge else method] * mu**-2.0
+
+    def h(largest, cohesive):
+        return min(factor * min(largest, cohesive * mu**-1.5), h_ripple / RIPPLE_MARGIN)
+
     if method == "fem":
-        return FEDiscretisation(name=accuracy, h_surface=factor * min(H_MAX, H_COHESIVE * mu**-1.5),
-                                r_fine=r_fine, size=max(DOMAIN_SIZE, 100.0 * r_fine), trace=trace)
-    if track_edge or (track_edge is None and mu >= MU_TRACKING):
+        return FEDiscretisation(name=accuracy, h_surface=h(H_MAX, H_COHESIVE), r_fine=r_fine,
+                                h_ripple=h_ripple, size=max(DOMAIN_SIZE, 100.0 * r_fine),
+                                trace=trace)
+    if edge:
         band = BAND_COHESIVE * mu**-1.5
         return EdgeDiscretisation(
-            name=accuracy, h_surface=factor * min(H_MAX_BEM, H_COHESIVE_TRACKING * mu**-1.5),
-            band=band, h_contact=factor * H_MAX_BEM,
+            name=accuracy, h_surface=h(H_MAX_BEM, H_COHESIVE_TRACKING), band=band,
+            h_contact=factor * H_MAX_BEM, h_ripple=h_ripple,
             trace=replace(trace, da=min(trace.da, 0.5 * band), front=band))
-    return BEMDiscretisation(name=accuracy,
-                             h_surface=factor * min(H_MAX_BEM, H_COHESIVE_BEM * mu**-1.5),
-                             r_fine=r_fine, trace=trace)
+    return BEMDiscretisation(name=accuracy, h_surface=h(H_MAX_BEM, H_COHESIVE_BEM),
+                             r_fine=r_fine, h_ripple=h_ripple, trace=trace)

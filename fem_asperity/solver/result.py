@@ -21,6 +21,15 @@ STATUSES = ("ok", "no_estimate", "ripples", "missed_jump", "tolerance_not_met")
 PHYSICAL_FOLDS = 2
 
 
+def relative_estimate(estimate, events):
+    """The error estimate per key relative to the event's magnitude (`events`: the
+    `Events.records()` dict); None where either is missing or the event is 0."""
+    if estimate is None:
+        return None
+    return {k: (e / abs(events[k]) if e is not None and events.get(k) else None)
+            for k, e in estimate.items()}
+
+
 def worst_status(*statuses):
     """The worst of the given `STATUSES`."""
     return max(statuses, key=STATUSES.index)
@@ -43,8 +52,10 @@ class CurveResult:
     equilibrium: the traced equilibrium curve: with `unstable_branch` the whole curve, else the
         stable branches the paths visit, one after the other (`branch` numbers them).
     approach, retraction: the paths under δ̄o control (jumps as consecutive points at equal δ̄o).
-    events: `Events` read off the paths. error_estimate: |event − event on the coarser mesh| per
-    key (None where not estimated). dofs, surface_nodes, points, newton_iterations, wall_s: cost.
+    events: `Events` read off the paths. error_estimate: estimated absolute error per event key,
+    in the event's units (`solve._estimate`; None where not estimated); relative_error_estimate
+    holds the same relative to the event.
+    dofs, surface_nodes, points, newton_iterations, wall_s: cost.
     folds: folds of δ̄o met: changes of stability along the whole curve, or jumps of the paths.
     status: one of `STATUSES` ('ok' unless something calls for a finer accuracy);
     message: how it was obtained, and why the status is not 'ok' where it is not.
@@ -70,6 +81,11 @@ class CurveResult:
     model: Model | None = field(default=None, repr=False, compare=False)
 
     @property
+    def relative_error_estimate(self):
+        """`error_estimate` relative to each event's magnitude (`relative_estimate`)."""
+        return relative_estimate(self.error_estimate, self.events.records())
+
+    @property
     def ripples(self):
         """More folds than one jump-in and one jump-out: the sign of a surface mesh too coarse."""
         return self.folds > PHYSICAL_FOLDS
@@ -82,6 +98,7 @@ class CurveResult:
             "accuracy": self.accuracy,
             **self.events.records(),
             "error_estimate": self.error_estimate,
+            "relative_error_estimate": self.relative_error_estimate,
             "dofs": self.dofs,
             "surface_nodes": self.surface_nodes,
             "points": self.points,

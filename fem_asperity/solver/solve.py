@@ -6,8 +6,8 @@ the Boussinesq integral of the homogeneous half-space on a radial grid (`solids.
 no truncation of the solid. Then, for both: LJ 9-3 traction on the surface as a nonlinear boundary
 form with its consistent tangent; pseudo-arc-length continuation of the whole equilibrium curve;
 exact extrema of P̄; approach and retraction under δ̄o control read off it, jumps included (see
-`path.branches`, `path.whole_curve`). The error estimate is the change of each event on a
-coarser discretisation (`coarsened()` of the `solver.presets` discretisation)."""
+`path.branches`, `path.whole_curve`). The error estimate is twice the change of each event on
+a finer discretisation (`for_estimate()` of the `solver.presets` discretisation, `_estimate`)."""
 
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -21,7 +21,7 @@ from ..path.curve import read_events
 from ..path.grids import FixedGrid
 from ..path.whole_curve import whole_curve_paths
 from ..plumbing.checks import in_range, positive
-from ..plumbing.errors import InputError
+from ..plumbing.errors import ContinuationError, InputError
 from ..solids.fe import Solid
 from .presets import discretisation
 from .result import PHYSICAL_FOLDS, CurveResult, Model, worst_status
@@ -34,9 +34,9 @@ PATH_BLAS_THREADS = 1
 #: Upper end of the measured onset of jump-in, 0.6972 ± 0.001 (`studies.onset.jump_in_onset`,
 #: FE and BEM; test_bem_curve's fold-margin test pins 0.69-0.70): above it a homogeneous
 #: Derjaguin curve must jump in. Just above, the fold is shallow and a grid can miss it (BEM
-#: `default` at μ = 0.7); such a curve is solved again on grids refined up to
-#: MISSED_JUMP_REFINEMENTS times (test_bem_curve).
-MU_ONSET_HI, MISSED_JUMP_REFINEMENTS = 0.6982, 2
+#: `default` at μ = 0.7); such a curve, like one that ripples, is solved again on grids refined
+#: up to REFINEMENTS times (test_bem_curve).
+MU_ONSET_HI, REFINEMENTS = 0.6982, 2
 
 #: Tabor parameters a curve is solved for: from the rigid limit (μ = 1e-3 solves with both
 #: methods; 1e-300 overflowed) to where the edge-following grids end; test_cli's bad-input test
@@ -93,38 +93,51 @@ def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, unstable_br
     )
 
 
-def _solve_with_its_jump(mu, disc, *, progress=None, **options):
-    """`solve_discretised`; where a homogeneous Derjaguin curve above MU_ONSET_HI shows no
-    jump-in, again on discretisations refined (`refined()`) up to MISSED_JUMP_REFINEMENTS times
-    until it does; its status is 'missed_jump' if it never does. Returns (result, missed): missed
-    is the solve before the refinement that found the jump (None without one), twice as coarse:
-    the error estimate's partner then, as the preset's coarser solve would compare against a
-    discretisation that misses the jump too."""
-    result = solve_discretised(mu, disc, progress=progress, **options)
+def _solve_refining(mu, disc, *, progress=None, **options):
+    """`solve_discretised`, then again on discretisations refined (`refined()`) up to
+    REFINEMENTS times while the curve ripples, or, for a homogeneous Derjaguin curve above
+    MU_ONSET_HI, shows no jump-in; its status is 'ripples' or 'missed_jump' if the last one
+    still does. Returns (result, the discretisation it was solved on)."""
     must_jump = (mu > MU_ONSET_HI and options["solid"].layer_thickness is None
                  and options["radius_ratio"] is None)
-    if not must_jump or result.events.jump_in is not None:
-        return result, None
-    wall, finer, missed = result.wall_s, disc, result
-    for level in range(1, MISSED_JUMP_REFINEMENTS + 1):
-        finer = finer.refined()
-        retried = solve_discretised(mu, finer, **options)
-        wall += retried.wall_s
-        if retried.events.jump_in is not None:
-            note = (f"; no jump-in at '{disc.name}' although mu is above the onset: solved "
-                    f"again on a discretisation refined {level} time(s)")
-            return replace(retried, message=retried.message + note, wall_s=wall), missed
-        missed = retried
-    note = (f"; no jump-in although mu is above the onset, also refined "
-            f"{MISSED_JUMP_REFINEMENTS} times: try --tolerance or a finer accuracy")
-    return replace(result, status=worst_status(result.status, "missed_jump"),
-                   message=result.message + note, wall_s=wall), None
+
+    def flaw(result):
+        if result.ripples:
+            return "ripples"
+        return "missed_jump" if must_jump and result.events.jump_in is None else None
+
+    result = solve_discretised(mu, disc, progress=progress, **options)
+    first, wall, solved_on = flaw(result), result.wall_s, disc
+    if first is None:
+        return result, disc
+    for level in range(1, REFINEMENTS + 1):
+        solved_on = solved_on.refined()
+        result = solve_discretised(mu, solved_on, **options)
+        wall += result.wall_s
+        if flaw(result) is None:
+            why = ("more folds than a jump-in and a jump-out (ripple)" if first == "ripples"
+                   else "no jump-in although mu is above the onset")
+            note = (f"; at '{disc.name}' {why}: solved again on a discretisation refined "
+                    f"{level} time(s)")
+            return replace(result, message=result.message + note, wall_s=wall), solved_on
+    why = ("still ripples" if flaw(result) == "ripples"
+           else "no jump-in although mu is above the onset")
+    note = (f"; {why} after {REFINEMENTS} refinements: the jump-in is the first fold of the "
+            f"approach and the jump-out the last of the retraction; try --tolerance")
+    return replace(result, status=worst_status(result.status, flaw(result)),
+                   message=result.message + note, wall_s=wall), solved_on
 
 
-def _difference(fine, coarse):
-    """|fine − coarse| per estimated key; None where either is missing (e.g. no jump on one)."""
-    a, b = fine.events.records(), coarse.events.records()
-    return {k: (abs(a[k] - b[k]) if a[k] is not None and b[k] is not None else None)
+def _estimate(result, disc, partner, partner_disc):
+    """Error estimate of `result` (solved on `disc`) from `partner` (on `partner_disc`, surface
+    elements r times as long): |difference| / |r − 1| per ESTIMATED key, None where the event
+    is missing in either. Against a finer partner (r = 1/2) that is twice the difference: the
+    error of first-order convergence, which bounds faster convergence too (at order p the
+    difference is the fraction 1 − 2^(−p) of the error), overstating it by at most 2.
+    Against a coarser one (r = 2, `solve_to_tolerance`) it is the difference itself."""
+    a, b = result.events.records(), partner.events.records()
+    scale = 1.0 / abs(partner_disc.h_surface / disc.h_surface - 1.0)
+    return {k: (scale * abs(a[k] - b[k]) if a[k] is not None and b[k] is not None else None)
             for k in ESTIMATED}
 
 
@@ -141,39 +154,53 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
         is the whole S-shaped curve (more work: LU factorisations and short steps); by default
         only the stable branches are traced and each jump lands by energy descent
         (`path.branches`).
-    error_estimate: also solve with twice as large surface elements (and turn limit, and a
-        steeper far-field grading) and report the change of every event. That solve runs
-        alongside on the second core; if it fails, the estimate is None and `message` says why
-        (if the main solve fails, its error is raised once the coarser one has ended).
+    error_estimate: also solve on the discretisation of the estimate (`for_estimate()`: surface
+        elements and turn limit halved, the bulk graded more gently) and report per event twice
+        the difference (`_estimate`). That solve runs alongside on the second core; the
+        wall time is about that of the finer solve. If it fails, the estimate is None and
+        `status` and `message` say why; the result is kept.
+    A curve that ripples, or misses a jump it must have, is solved again on refined
+    discretisations (up to REFINEMENTS times); one that still does carries that `status`.
     progress: callable(fraction in [0, 1]) for a progress bar.
     Returns a `CurveResult`; raises `ContinuationError` if the path cannot be followed.
     """
-    mu = in_range("mu", mu, *MU_RANGE, closed_lo=True)
+    mu = _mu(mu)
     positive("p_end", p_end)
     if radius_ratio is not None:
         in_range("radius_ratio", radius_ratio, 10.0, np.inf, closed_lo=True)
     disc = discretisation(mu, accuracy, p_end=p_end, method=method)
     options = dict(solid=solid, radius_ratio=radius_ratio, unstable_branch=unstable_branch)
     if not error_estimate:
-        return _solve_with_its_jump(mu, disc, progress=progress, **options)[0]
+        return _solve_refining(mu, disc, progress=progress, **options)[0]
     start = time.perf_counter()
-    # The coarser solve runs in a second thread: the dense factorisations release the GIL, so
-    # the two curves share the two cores (one BLAS thread each).
+    # The estimate's solve runs in a second thread: the dense factorisations release the GIL,
+    # so the two curves share the two cores (one BLAS thread each).
     with threadpool_limits(PATH_BLAS_THREADS, user_api="blas"), ThreadPoolExecutor(1) as pool:
-        coarse_job = pool.submit(solve_discretised, mu, disc.coarsened(), **options)
-        result, missed = _solve_with_its_jump(mu, disc, progress=progress, **options)
+        finer_job = pool.submit(solve_discretised, mu, disc.for_estimate(), **options)
+        result, solved_on = _solve_refining(mu, disc, progress=progress, **options)
         try:
-            coarse = coarse_job.result() if missed is None else missed
-            estimate, note, status = _difference(result, coarse), "", result.status
-            if coarse.ripples:
-                note = ("; the coarser solve of the error estimate ripples (more than two folds), "
-                        "so the estimate is pessimistic")
+            if solved_on is disc:
+                partner = finer_job.result()
+            else:  # refined for ripple or a missed jump: its own partner
+                partner = solve_discretised(mu, solved_on.for_estimate(), **options)
+            if partner.ripples:
+                raise ContinuationError(f"its solve has {partner.folds} folds")
+            estimate = _estimate(result, solved_on, partner, solved_on.for_estimate())
+            note, status = "", result.status
         except Exception as exc:  # the estimate never costs the result: whatever stopped it
-            estimate, note = None, (f"; no error estimate: the coarser discretisation failed "
-                                    f"({type(exc).__name__}: {exc}); try a finer accuracy")
+            estimate, note = None, (f"; no error estimate: its finer solve failed "
+                                    f"({type(exc).__name__}: {exc})")
             status = worst_status(result.status, "no_estimate")
     return replace(result, error_estimate=estimate, status=status, message=result.message + note,
                    wall_s=time.perf_counter() - start)
+
+
+def _mu(mu):
+    """μ of a solved curve: one finite number in MU_RANGE."""
+    if np.ndim(mu) != 0:
+        raise InputError(f"mu must be one number (a curve per call; `studies.sweep` solves "
+                         f"many); got an array of shape {np.shape(mu)}")
+    return in_range("mu", mu, *MU_RANGE, closed_lo=True)
 
 
 #: Events a tolerance-driven solve converges (relative change between levels).
@@ -186,7 +213,7 @@ def solve_to_tolerance(mu, tolerance, *, method="fem", solid=Solid(), radius_rat
     P̄off change by at most `tolerance` (relative) between two levels; the finer one is returned
     with those changes as its error estimate. If `max_levels` do not get there, the last level
     is returned with a message saying so. Arguments otherwise as `solve_curve`."""
-    mu = in_range("mu", mu, *MU_RANGE, closed_lo=True)
+    mu = _mu(mu)
     tolerance = in_range("tolerance", tolerance, 0.0, 0.1)
     disc = discretisation(mu, "draft", p_end=p_end, method=method)
 
@@ -195,12 +222,12 @@ def solve_to_tolerance(mu, tolerance, *, method="fem", solid=Solid(), radius_rat
         return solve_discretised(mu, d, solid=solid, radius_ratio=radius_ratio,
                                  unstable_branch=unstable_branch, progress=report)
 
-    previous, wall = level(0, disc), 0.0
+    previous, previous_disc, wall = level(0, disc), disc, 0.0
     for k in range(1, max_levels):
         wall += previous.wall_s
         disc = disc.refined()
         result = level(k, disc)
-        change = _difference(result, previous)
+        change = _estimate(result, disc, previous, previous_disc)
         worst = max(change[key] / abs(getattr(result.events, key)) for key in TOLERANCE_KEYS)
         done = worst <= tolerance
         note = (f"; tolerance {tolerance:g} on P̄max, P̄off " + ("met" if done else "NOT met")
@@ -210,7 +237,7 @@ def solve_to_tolerance(mu, tolerance, *, method="fem", solid=Solid(), radius_rat
                          wall_s=wall + result.wall_s, status=status, message=result.message + note)
         if done:
             break
-        previous = result
+        previous, previous_disc = result, disc
     if progress:
         progress(1.0)
     return result

@@ -24,7 +24,7 @@ import numpy as np
 
 from ..path.curve import Curve, Events, Jump, curve_from_columns
 from ..plumbing.files import writable_folder, write_atomic
-from ..solver.result import curve_files
+from ..solver.result import curve_files, relative_estimate
 from ..solver.solve import solve_curve
 
 #: The modules whose code computes a stored curve, and the modules they import from the package:
@@ -58,6 +58,11 @@ class StoredCurve:
     message: str
     cost: dict
     folder: Path
+
+    @property
+    def relative_error_estimate(self):
+        """`error_estimate` relative to each event's magnitude."""
+        return relative_estimate(self.error_estimate, self.events.records())
 
 
 def cache_dir():
