@@ -2,7 +2,9 @@
 
 all: everything below and the report; single-asperity: the paper's fitted laws (Figs. 3-7)
 judged against FE sweeps, the BEM as cross-check; rough-surface: Figs. 9-13, their verdicts, the
-paper's law against the solved law. Curves are solved once and stored ($ADHESION_CACHE)."""
+paper's law against the solved law. Curves are solved once and stored ($ADHESION_CACHE).
+accuracy: the speed-accuracy trade of the solvers' settings (`validation.accuracy`; not part of
+all); bench: timings of the main operations, for comparing versions."""
 
 import json
 import sys
@@ -18,7 +20,7 @@ from fem_asperity.solver.presets import PRESETS
 
 from .closed_forms import closed_form_checks
 from .law_figure import law_table, plot_laws
-from .report import PENDING, render
+from .report import PENDING, provenance, render
 from .rough_surface import COMPARISON_MU
 from .rough_surface import run as run_rough_surface
 from .rough_surface import section as rough_section
@@ -69,6 +71,14 @@ def build_parser():
                              help="run the sweeps on this Dask scheduler (extra 'cluster')")
     single.add_argument("--accuracy", choices=tuple(PRESETS), default="default",
                         help="accuracy of the swept curves (default)")
+    trade = commands.add_parser("accuracy", help="error against wall time of every preset and "
+                                "setting, the Pareto front, orders, estimate/true error")
+    trade.add_argument("--out", type=Path, default=Path("out"), help="output folder")
+    trade.add_argument("--quick", action="store_true",
+                       help="a reduced set (mu = 1, two presets, one setting of each kind)")
+    trade.add_argument("--json", action="store_true", help="print a JSON summary")
+    bench = commands.add_parser("bench", help="timings of the main operations")
+    bench.add_argument("--json", action="store_true", help="print the timings as JSON")
     for command in (everything, rough):
         command.add_argument("--compare-mu", type=float, nargs="+", default=list(COMPARISON_MU),
                              help="mu of the paper-law vs BEM-law check (default: %(default)s)")
@@ -127,8 +137,24 @@ def run_all(out, command, args):
             "wall_s": wall_s}
 
 
+def _accuracy(out, args, command):
+    """The accuracy study written into `out`; its summary."""
+    from . import accuracy
+
+    study = accuracy.run(quick=args.quick, step=lambda text: print(text, file=sys.stderr,
+                                                                    flush=True))
+    header = ["# The speed-accuracy trade", "", provenance(command),
+              f"The run took {study['wall_s']:.0f} s. Do not edit by hand."]
+    write_atomic(out / "accuracy.md", "\n".join(accuracy.markdown(study, header)) + "\n")
+    write_atomic(out / "accuracy.json", json.dumps(study, indent=1, allow_nan=False))
+    save_figure(accuracy.figure(study), out / "accuracy.png")
+    return {"files": ["accuracy.md", "accuracy.json", "accuracy.png"], "wall_s": study["wall_s"]}
+
+
 def _run(args, command, out):
     """The command's outputs written into `out`; its summary."""
+    if args.command == "accuracy":
+        return _accuracy(out, args, command)
     if args.command == "single-asperity":
         return {"files": [name for name, _ in SINGLE_FILES], **_single(out, args, 1, 2)[1]}
     if args.command == "rough-surface":
@@ -152,7 +178,11 @@ def _tell(args, summary):
 
 def main(argv=None):
     args = build_parser().parse_args(argv)
-    if args.command != "single-asperity":
+    if args.command == "bench":
+        from .bench import run as run_bench
+
+        return run_bench(as_json=args.json)
+    if args.command in ("all", "rough-surface"):
         positive("--compare-mu", args.compare_mu)  # before anything is written
     writable_folder(args.out, "--out")
     command = " ".join([PROG] + (sys.argv[1:] if argv is None else list(argv)))

@@ -1,0 +1,248 @@
+"""The speed-accuracy trade, measured: `python -m validation accuracy --out DIR [--quick]`.
+
+For each μ and method, one curve per setting (every preset; then, at `default`, one setting at a
+time: surface element size, turn limit, FE bulk grading and truncation, BEM traction radius),
+its wall time, and the error of each event against a reference: the BEM on elements half as
+long as `fine`'s (and half its turn limit), whose own uncertainty is its difference from
+`fine` and which the FE `fine` cross-checks. The presets are also solved with their error
+estimate, to give the ratio of estimate to true error. The observed order of each event comes
+from the element sizes h, h/2, h/4 of the three presets (the turn limit halves with h), and the
+GW strength F̄max from the quadrature's sample count against a 4x denser one.
+
+Writes accuracy.md (tables), accuracy.json (every row) and accuracy.png (error against wall
+time, log-log, the Pareto front and the presets marked)."""
+
+import time
+from dataclasses import replace
+
+import numpy as np
+
+from fem_asperity.solver.presets import PRESETS, discretisation
+from fem_asperity.solver.solve import solve_curve, solve_discretised
+
+#: Events judged: the pull-off force, the most tensile approach force's separation and contact
+#: radius, the gap before the jump-in, the jumps' positions, and the approach force maximum.
+KEYS = ("p_off", "p_max", "delta_oc", "a_c", "x_oc", "delta_jump_in", "delta_jump_out")
+#: One μ per regime: DMT-like (0.1), the transition (1), JKR-like (5, 10). The FE has no grids
+#: that follow the contact edge, so above FE_MU_MAX its curves cost minutes to hours: left out.
+STUDY_MUS, FE_MU_MAX = (0.1, 1.0, 5.0, 10.0), 5.0
+#: --quick: the transition only, the two cheaper presets, one setting of each kind.
+QUICK_MUS, QUICK_PRESETS = (1.0,), ("draft", "default")
+#: Settings varied one at a time around `default` (field of the discretisation, values).
+SETTINGS = {
+    "fem": (("grading", (0.4, 0.1)), ("size", (1e2, 1e4))),
+    "bem": (("r_max", (25.0, 50.0)),),
+}
+TURNS = (0.2, 0.05)
+#: An error is judged against the estimate only where it exceeds the reference's uncertainty
+#: this many times.
+RESOLVED = 10.0
+#: GW quadrature: F̄max at these sample counts against REFERENCE_SAMPLES.
+GW_SAMPLES, GW_REFERENCE_SAMPLES = (12, 24, 48), 192
+
+
+def _errors(events, reference):
+    """Relative error per key against the reference (None where either lacks the event)."""
+    return {k: (abs(events[k] - reference[k]) / abs(reference[k])
+                if events.get(k) is not None and reference.get(k) else None) for k in KEYS}
+
+
+def _row(mu, method, setting, disc, reference):
+    result = solve_discretised(mu, disc)
+    return {"mu": mu, "method": method, "setting": setting, "h_surface": disc.h_surface,
+            "folds": result.folds, "wall_s": result.wall_s,
+            "error": _errors(result.events.records(), reference)}
+
+
+def _reference(mu, step):
+    """The reference events (BEM on `fine.refined()`), its uncertainty (relative difference from
+    `fine`) and the BEM `fine` row."""
+    step(f"mu = {mu:g}: reference (BEM, half the fine elements)")
+    fine = discretisation(mu, "fine", method="bem")
+    reference = solve_discretised(mu, fine.refined())
+    events = reference.events.records()
+    fine_result = solve_discretised(mu, fine)
+    return events, {"events": events, "wall_s": reference.wall_s,
+                    "uncertainty": _errors(fine_result.events.records(), events)}
+
+
+def _presets(mu, method, presets, reference, uncertainty, step):
+    """A row per preset: the solve with its estimate (wall time of both) and the estimate's
+    ratio to the true error per key, where that error exceeds RESOLVED times the reference's
+    own `uncertainty` (below, the reference cannot tell the true error)."""
+    rows = []
+    for name in presets:
+        step(f"mu = {mu:g}: {method} {name} with its error estimate")
+        start = time.perf_counter()
+        result = solve_curve(mu, method=method, accuracy=name)
+        events, estimate = result.events.records(), result.error_estimate or {}
+        error = _errors(events, reference)
+        ratio = {k: (estimate[k] / abs(reference[k]) / error[k]
+                     if error[k] and error[k] > RESOLVED * (uncertainty[k] or 0.0)
+                     and estimate.get(k) is not None else None) for k in KEYS}
+        rows.append({"mu": mu, "method": method, "setting": name, "preset": True,
+                     "h_surface": discretisation(mu, name, method=method).h_surface,
+                     "folds": result.folds, "status": result.status,
+                     "wall_s": time.perf_counter() - start, "error": error,
+                     "estimate_over_error": ratio})
+    return rows
+
+
+def _settings(mu, method, reference, quick, step):
+    """A row per setting varied alone around `default` (no estimate: one curve each)."""
+    base = discretisation(mu, "default", method=method)
+    variants = [(f"turn {t:g}", replace(base, trace=replace(base.trace, turn=t)))
+                for t in TURNS[:1 if quick else None]]
+    for field, values in SETTINGS[method][:1 if quick else None]:
+        if hasattr(base, field):
+            variants += [(f"{field} {v:g}", replace(base, **{field: v}))
+                         for v in values[:1 if quick else None]]
+    rows = []
+    for name, disc in variants:
+        step(f"mu = {mu:g}: {method} default, {name}")
+        rows.append({**_row(mu, method, name, disc, reference), "preset": False})
+    return rows
+
+
+def _orders(rows):
+    """Observed order per key from the three presets' errors (element sizes h, h/2, h/4):
+    log2 of the error ratio of consecutive presets, for each (μ, method) with all three."""
+    orders = []
+    for (mu, method) in sorted({(r["mu"], r["method"]) for r in rows}):
+        errs = {r["setting"]: r["error"] for r in rows
+                if r["preset"] and r["mu"] == mu and r["method"] == method}
+        if set(errs) != set(PRESETS):
+            continue
+        for coarse, fine in (("draft", "default"), ("default", "fine")):
+            orders.append({"mu": mu, "method": method, "between": f"{coarse}-{fine}", **{
+                k: (float(np.log2(errs[coarse][k] / errs[fine][k]))
+                    if errs[coarse][k] and errs[fine][k] else None) for k in KEYS}})
+    return orders
+
+
+def _gw(quick):
+    """F̄max of the paper's law at μ = 1, ω = 1 (σ = 1 nm-like) per quadrature sample count,
+    relative error against GW_REFERENCE_SAMPLES, and wall time."""
+    from gw.integrate import strength
+    from gw.laws import PaperLaw
+    from gw.surface import RoughSurface
+
+    law, surface = PaperLaw(1.0), RoughSurface(zeta=1.0, omega=1.0)
+    reference = strength(law, surface, samples=GW_REFERENCE_SAMPLES).f_max
+    rows = []
+    for samples in GW_SAMPLES[-1:] if quick else GW_SAMPLES:
+        start = time.perf_counter()
+        f_max = strength(law, surface, samples=samples).f_max
+        rows.append({"samples": samples, "wall_s": time.perf_counter() - start,
+                     "error_f_max": abs(f_max - reference) / reference})
+    return rows
+
+
+def pareto(points):
+    """Indices of the points (wall, error) no other point beats in both (lower is better)."""
+    order = sorted(range(len(points)), key=lambda i: (points[i][0], points[i][1]))
+    front, best = [], np.inf
+    for i in order:
+        if points[i][1] < best:
+            front.append(i)
+            best = points[i][1]
+    return front
+
+
+def run(*, quick=False, step=print):
+    """The study's data: {'rows', 'references', 'orders', 'gw', 'wall_s'}."""
+    start = time.perf_counter()
+    rows, references = [], []
+    for mu in QUICK_MUS if quick else STUDY_MUS:
+        reference, about = _reference(mu, step)
+        references.append({"mu": mu, **about})
+        for method in ("bem", "fem"):
+            if method == "fem" and mu > FE_MU_MAX:
+                continue
+            rows += _presets(mu, method, QUICK_PRESETS if quick else PRESETS, reference,
+                             about["uncertainty"], step)
+            rows += _settings(mu, method, reference, quick, step)
+    step("GW quadrature")
+    return {"rows": rows, "references": references, "orders": _orders(rows), "gw": _gw(quick),
+            "wall_s": time.perf_counter() - start}
+
+
+def _fmt(x):
+    return "-" if x is None else f"{x:.1e}"
+
+
+def markdown(study, header):
+    """The study's tables as Markdown lines, below `header` (provenance lines)."""
+    lines = [*header, "",
+             "## Error against wall time", "",
+             "Relative error of each event against the reference; presets with their error "
+             "estimate (wall time of both solves), other settings one curve at `default` with "
+             "one setting changed.", "",
+             "| mu | method | setting | h | folds | wall s | " + " | ".join(KEYS) + " |",
+             "|---" * (6 + len(KEYS)) + "|"]
+    for r in study["rows"]:
+        lines.append(f"| {r['mu']:g} | {r['method']} | {r['setting']} | {r['h_surface']:.3g} | "
+                     f"{r['folds']} | {r['wall_s']:.1f} | "
+                     + " | ".join(_fmt(r["error"][k]) for k in KEYS) + " |")
+    lines += ["", "## Error estimate over true error (presets)", "",
+              "Between 1 and 10: the estimate bounds the error without overstating it more than "
+              "tenfold. Below 1: it missed. '-': the error is below "
+              f"{RESOLVED:g} times the reference's uncertainty (or the event is missing).", "",
+              "| mu | method | preset | " + " | ".join(KEYS) + " |",
+              "|---" * (3 + len(KEYS)) + "|"]
+    for r in study["rows"]:
+        if r["preset"]:
+            ratio = r["estimate_over_error"]
+            lines.append(f"| {r['mu']:g} | {r['method']} | {r['setting']} | "
+                         + " | ".join("-" if ratio[k] is None else f"{ratio[k]:.2g}"
+                                      for k in KEYS) + " |")
+    lines += ["", "## Observed order (log2 of the error ratio of consecutive presets)", "",
+              "| mu | method | presets | " + " | ".join(KEYS) + " |",
+              "|---" * (3 + len(KEYS)) + "|"]
+    for o in study["orders"]:
+        lines.append(f"| {o['mu']:g} | {o['method']} | {o['between']} | "
+                     + " | ".join("-" if o[k] is None else f"{o[k]:.1f}" for k in KEYS) + " |")
+    lines += ["", "## References", "",
+              "Uncertainty: the relative difference of the BEM `fine` from the reference.", "",
+              "| mu | wall s | " + " | ".join(KEYS) + " |", "|---" * (2 + len(KEYS)) + "|"]
+    for ref in study["references"]:
+        lines.append(f"| {ref['mu']:g} | {ref['wall_s']:.1f} | "
+                     + " | ".join(_fmt(ref["uncertainty"][k]) for k in KEYS) + " |")
+    lines += ["", "## GW quadrature (F̄max, paper's law, μ = 1, ω = ζ = 1)", "",
+              "| samples | wall s | relative error |", "|---|---|---|"]
+    lines += [f"| {g['samples']} | {g['wall_s']:.3f} | {_fmt(g['error_f_max'])} |"
+              for g in study["gw"]]
+    return lines
+
+
+def figure(study):
+    """Error of P̄off and δ̄oc against wall time, log-log, per μ: the Pareto front as a line, the
+    presets as filled markers, the other settings open."""
+    from matplotlib.figure import Figure
+
+    mus = sorted({r["mu"] for r in study["rows"]})
+    fig = Figure(figsize=(4.2 * len(mus), 7.0), layout="constrained")
+    axes = fig.subplots(2, len(mus), squeeze=False)
+    for col, mu in enumerate(mus):
+        for row, key in enumerate(("p_off", "delta_oc")):
+            ax = axes[row][col]
+            rows = [r for r in study["rows"] if r["mu"] == mu and r["error"][key]]
+            for method, colour in (("bem", "tab:blue"), ("fem", "tab:orange")):
+                for r in rows:
+                    if r["method"] == method:
+                        ax.loglog(r["wall_s"], r["error"][key], "o", color=colour,
+                                  fillstyle="full" if r["preset"] else "none")
+                        if r["preset"]:
+                            ax.annotate(f"{method} {r['setting']}", (r["wall_s"], r["error"][key]),
+                                        fontsize=7, xytext=(3, 3), textcoords="offset points")
+            points = [(r["wall_s"], r["error"][key]) for r in rows]
+            front = sorted(points[i] for i in pareto(points))
+            if front:
+                ax.loglog(*zip(*front), "k--", lw=0.8, label="Pareto front")
+                ax.legend(fontsize=7)
+            ax.set_xlabel("wall time [s]")
+            ax.set_ylabel(f"relative error of {key}")
+            ax.set_title(f"μ = {mu:g}")
+    fig.suptitle("Speed against accuracy (filled: presets with their error estimate; "
+                 "blue BEM, orange FE)")
+    return fig
