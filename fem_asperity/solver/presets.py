@@ -70,10 +70,11 @@ H_COHESIVE_TRACKING = 0.0625
 #: 8 ε, where the LJ tension is 0.5% of its peak. Not pinned by a test.
 R_FINE_MIN = 4.0
 #: Largest surface element on which a curve has no ripple folds, RIPPLE_FREE[grid] · μ^(−2) √(Rε),
-#: per grid ('fem', 'bem' uniform, 'edge' following): the largest measured ripple-free size
-#: (`python benchmarks/ripple.py` → results/ripple.md; the ripple onset of h μ² falls between
-#: 0.28 and 0.31 for the uniform BEM at μ = 2.5-5, 0.38 and 0.40 for the edge-following grids at
-#: μ = 9-10); test_bem_curve.py::test_presets_do_not_ripple pins the BEM at the presets.
+#: per grid ('fem', 'bem' uniform, 'edge' following): the largest size found free of ripple at
+#: every μ measured (`python benchmarks/ripple.py` → results/ripple.md: the onset of h μ² lies
+#: between 0.28 and 0.30 for the uniform BEM at μ = 3.5, 0.33 and 0.375 for the edge-following
+#: grids at μ = 9, 0.45 and 0.56 for the FE at μ = 5);
+#: test_bem_curve.py::test_presets_do_not_ripple.
 RIPPLE_FREE = {"fem": 0.45, "bem": 0.28, "edge": 0.33}
 #: Presets stay this factor below the ripple-free size: it was measured at a few μ only. Not
 #: pinned by a test.
