@@ -2,6 +2,8 @@
 
 import json
 
+import pytest
+
 from validation.__main__ import main
 from validation.accuracy import KEYS, pareto
 
@@ -36,3 +38,13 @@ def test_bench_json_names_every_operation_and_the_machine(capsys):
     assert set(data["wall_s"]) >= {"bem_curve_mu1_draft", "fem_curve_mu1_draft",
                                    "gw_f_max_paper_law"}
     assert all(seconds > 0 for seconds in data["wall_s"].values())
+
+
+def test_exact_sphere_differs_from_derjaguin_like_eps_over_r():
+    """The first correction of the sphere's gap to Derjaguin's parabola is O(ε/R): the P̄off
+    difference falls with slope −1 in R/ε from 1e2 to 1e5, and is below 1e-4 at R/ε = 1e5."""
+    from validation.accuracy import derjaguin
+
+    sphere = derjaguin()
+    assert sphere["slope_p_off"] == pytest.approx(-1.0, abs=0.02)
+    assert sphere["rows"][-1]["difference"]["p_off"] < 1e-4

@@ -13,10 +13,11 @@ from dataclasses import asdict
 from pathlib import Path
 
 from fem_asperity.closed_forms.laws import PAPER_LAWS
-from fem_asperity.plumbing.checks import positive
+from fem_asperity.plumbing.checks import in_range, positive
 from fem_asperity.plumbing.cli import Parser, dump_json, run
 from fem_asperity.plumbing.files import save_figure, staged_folder, writable_folder, write_atomic
 from fem_asperity.solver.presets import PRESETS
+from fem_asperity.solver.solve import MU_RANGE
 
 from .closed_forms import closed_form_checks
 from .law_figure import law_table, plot_laws
@@ -76,6 +77,8 @@ def build_parser():
     trade.add_argument("--out", type=Path, default=Path("out"), help="output folder")
     trade.add_argument("--quick", action="store_true",
                        help="a reduced set (mu = 1, two presets, one setting of each kind)")
+    trade.add_argument("--mu", type=float, nargs="+",
+                       help="Tabor parameters studied (default: 0.1 1 5 10; --quick: 1)")
     trade.add_argument("--json", action="store_true", help="print a JSON summary")
     bench = commands.add_parser("bench", help="timings of the main operations")
     bench.add_argument("--json", action="store_true", help="print the timings as JSON")
@@ -141,8 +144,8 @@ def _accuracy(out, args, command):
     """The accuracy study written into `out`; its summary."""
     from . import accuracy
 
-    study = accuracy.run(quick=args.quick, step=lambda text: print(text, file=sys.stderr,
-                                                                    flush=True))
+    study = accuracy.run(quick=args.quick, mus=args.mu,
+                         step=lambda text: print(text, file=sys.stderr, flush=True))
     header = ["# The speed-accuracy trade", "", provenance(command),
               f"The run took {study['wall_s']:.0f} s. Do not edit by hand."]
     write_atomic(out / "accuracy.md", "\n".join(accuracy.markdown(study, header)) + "\n")
@@ -182,6 +185,8 @@ def main(argv=None):
         from .bench import run as run_bench
 
         return run_bench(as_json=args.json)
+    if args.command == "accuracy" and args.mu:
+        in_range("--mu", args.mu, *MU_RANGE, closed_lo=True)
     if args.command in ("all", "rough-surface"):
         positive("--compare-mu", args.compare_mu)  # before anything is written
     writable_folder(args.out, "--out")

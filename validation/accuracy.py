@@ -7,7 +7,8 @@ long as `fine`'s (and half its turn limit), whose own uncertainty is its differe
 `fine` and which the FE `fine` cross-checks. The presets are also solved with their error
 estimate, to give the ratio of estimate to true error. The observed order of each event comes
 from the element sizes h, h/2, h/4 of the three presets (the turn limit halves with h), and the
-GW strength F̄max from the quadrature's sample count against a 4x denser one.
+GW strength F̄max from the quadrature's sample count against a 4x denser one. Last, the exact
+sphere profile against Derjaguin's parabola for R/ε from 10 to 1e5.
 
 Writes accuracy.md (tables), accuracy.json (every row) and accuracy.png (error against wall
 time, log-log, the Pareto front and the presets marked)."""
@@ -37,6 +38,10 @@ TURNS = (0.2, 0.05)
 #: An error is judged against the estimate only where it exceeds the reference's uncertainty
 #: this many times.
 RESOLVED = 10.0
+#: The exact sphere against Derjaguin's parabola: R/ε values, at μ = 1 on the BEM `draft` (its
+#: discretisation error, below 1e-6 in P̄off, is the same for both profiles). The slope of the
+#: difference is fitted from DERJAGUIN_FIT_FROM on, where ε/R is small.
+DERJAGUIN_RATIOS, DERJAGUIN_FIT_FROM = (10.0, 1e2, 1e3, 1e4, 1e5), 1e2
 #: GW quadrature: F̄max at these sample counts against REFERENCE_SAMPLES.
 GW_SAMPLES, GW_REFERENCE_SAMPLES = (12, 24, 48), 192
 
@@ -138,6 +143,29 @@ def _gw(quick):
     return rows
 
 
+def derjaguin():
+    """Relative difference of each event between the exact sphere (R/ε) and Derjaguin's
+    parabola, per R/ε, and the log-log slope of the P̄off difference against R/ε (−1: the
+    difference falls like ε/R)."""
+    import warnings
+
+    from fem_asperity.plumbing.errors import DerjaguinWarning
+
+    def events(radius_ratio):
+        with warnings.catch_warnings():  # R/ε < 300 is what is measured here
+            warnings.simplefilter("ignore", DerjaguinWarning)
+            return solve_curve(1.0, method="bem", accuracy="draft", error_estimate=False,
+                               radius_ratio=radius_ratio).events.records()
+
+    parabola = events(None)
+    rows = [{"radius_ratio": r, "difference": _errors(events(r), parabola)}
+            for r in DERJAGUIN_RATIOS]
+    fit = [(np.log(r["radius_ratio"]), np.log(r["difference"]["p_off"])) for r in rows
+           if r["radius_ratio"] >= DERJAGUIN_FIT_FROM]
+    slope = float(np.polyfit(*zip(*fit), 1)[0])
+    return {"mu": 1.0, "rows": rows, "slope_p_off": slope}
+
+
 def pareto(points):
     """Indices of the points (wall, error) no other point beats in both (lower is better)."""
     order = sorted(range(len(points)), key=lambda i: (points[i][0], points[i][1]))
@@ -149,11 +177,12 @@ def pareto(points):
     return front
 
 
-def run(*, quick=False, step=print):
-    """The study's data: {'rows', 'references', 'orders', 'gw', 'wall_s'}."""
+def run(*, quick=False, mus=None, step=print):
+    """The study's data: {'rows', 'references', 'orders', 'gw', 'wall_s'}; `mus` replaces
+    STUDY_MUS (or QUICK_MUS)."""
     start = time.perf_counter()
     rows, references = [], []
-    for mu in QUICK_MUS if quick else STUDY_MUS:
+    for mu in mus or (QUICK_MUS if quick else STUDY_MUS):
         reference, about = _reference(mu, step)
         references.append({"mu": mu, **about})
         for method in ("bem", "fem"):
@@ -162,9 +191,9 @@ def run(*, quick=False, step=print):
             rows += _presets(mu, method, QUICK_PRESETS if quick else PRESETS, reference,
                              about["uncertainty"], step)
             rows += _settings(mu, method, reference, quick, step)
-    step("GW quadrature")
+    step("GW quadrature; the exact sphere against Derjaguin")
     return {"rows": rows, "references": references, "orders": _orders(rows), "gw": _gw(quick),
-            "wall_s": time.perf_counter() - start}
+            "derjaguin": derjaguin(), "wall_s": time.perf_counter() - start}
 
 
 def _fmt(x):
@@ -212,6 +241,13 @@ def markdown(study, header):
               "| samples | wall s | relative error |", "|---|---|---|"]
     lines += [f"| {g['samples']} | {g['wall_s']:.3f} | {_fmt(g['error_f_max'])} |"
               for g in study["gw"]]
+    sphere = study["derjaguin"]
+    lines += ["", "## The exact sphere against Derjaguin's parabola (μ = 1, BEM draft)", "",
+              "Relative difference of each event; the P̄off difference falls like "
+              f"(R/ε)^{sphere['slope_p_off']:.3f} from R/ε = {DERJAGUIN_FIT_FROM:g} on.", "",
+              "| R/ε | " + " | ".join(KEYS) + " |", "|---" * (1 + len(KEYS)) + "|"]
+    lines += [f"| {r['radius_ratio']:g} | " + " | ".join(_fmt(r["difference"][k]) for k in KEYS)
+              + " |" for r in sphere["rows"]]
     return lines
 
 
