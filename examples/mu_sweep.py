@@ -43,7 +43,7 @@ ACCURACY = "draft" if FAST else "default"
 # %%
 # The table's columns, in order. Units: forces in 2πRΔγ (negative = tensile), separations in ε,
 # radii in √(Rε). `p_off` is the most tensile force on retraction (the pull-off), `p_max` the most
-# tensile on approach, `*_error` the solver's error estimate (change on a grid twice as coarse).
+# tensile on approach, `*_error` the solver's error estimate (twice the change on a finer grid).
 # `paper_*` are the paper's closed forms (`PAPER_LAWS.events`): its P̄max is Wu's fit to the
 # pull-off force (eq. 2).
 

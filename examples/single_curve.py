@@ -50,8 +50,8 @@ ACCURACY = "draft" if FAST else "default"
 # Solve. `solve_curve` traces the whole equilibrium curve by pseudo-arc-length continuation and
 # reads off the approach and the retraction under δ̄o control, each jump landing where energy
 # descent takes it. With `error_estimate=True` (the default) the same curve is also solved with
-# surface elements twice as long, on the second core, and the change of every event is reported
-# as its error estimate. `unstable_branch=True` also traces the unstable parts of the S-shaped
+# surface elements half as long, on the second core, and twice the change of every event is
+# reported as its error estimate (`relative_error_estimate`: the same relative to the event). `unstable_branch=True` also traces the unstable parts of the S-shaped
 # equilibrium curve between the folds (for the plot; it roughly doubles the cost).
 
 result = solve_curve(MU, method=METHOD, accuracy=ACCURACY, unstable_branch=True)
@@ -62,7 +62,7 @@ print(result.message)
 # %%
 # The events. Units: separations δ̄o and gaps x̄o in ε, forces P̄ in 2πRΔγ (negative = tensile),
 # the compressive contact radius ā_c in √(Rε). `records()` flattens the events into the command
-# line's keys; the error estimate holds |event − event on the coarser grid| for the key events.
+# line's keys; the error estimate holds 2 |event − event on a finer grid| for the key events.
 
 events = result.events.records()
 estimate = result.error_estimate or {}

@@ -73,13 +73,11 @@ class SweepRow:
         row = {"mu": self.mu, "status": self.status}
         records = self.curve.events.records() if self.curve else dict.fromkeys(EVENT_UNITS)
         estimate = (self.curve.error_estimate if self.curve else None) or {}
+        relative = (self.curve.relative_error_estimate if self.curve else None) or {}
         for key in EVENT_UNITS:
-            value, error = records[key], estimate.get(key)
-            row[key] = value
+            row[key] = records[key]
             if key != "jump_in":
-                row[f"{key}_err"] = error
-                row[f"{key}_rel_err"] = (error / abs(value) if error is not None and value
-                                         else None)
+                row[f"{key}_err"], row[f"{key}_rel_err"] = estimate.get(key), relative.get(key)
         row.update(self.curve.cost if self.curve else dict.fromkeys(COST_KEYS))
         row["message"] = self.message
         return row
