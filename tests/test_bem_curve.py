@@ -196,3 +196,15 @@ def test_error_estimate_bounds_the_error_without_overstating_it():
         if error > 1e-8:
             assert error <= estimate <= 10 * error, key
         assert result.relative_error_estimate[key] == pytest.approx(estimate / abs(a[key]))
+
+
+@pytest.mark.parametrize("mu", [3.0, 7.0])
+def test_progress_rises_to_one_at_the_end_only(mu):
+    """The progress never falls and reaches 1 only with the last report, on a uniform grid (μ = 3)
+    and on grids that follow the edge (μ = 7, where it fell with each regrid of the retraction
+    and stayed near 0.85 while the peel traced most of its points)."""
+    seen = []
+    solve_curve(mu, method="bem", accuracy="draft", error_estimate=False, progress=seen.append)
+    assert all(b >= a for a, b in zip(seen, seen[1:]))
+    assert seen[-1] == 1.0 and max(seen[:-1]) < 1.0
+    assert max(seen[:-1]) > 0.9  # the retraction moves the bar on before the end

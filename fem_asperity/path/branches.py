@@ -36,6 +36,13 @@ MAX_JUMPS = 200
 #: new grid's curve: its landing is a jump (an ordinary move changes P̄ far less; the largest is
 #: in the curve's message, `grids.EdgeGrids.summary`). Not pinned by a test.
 REGRID_JUMP = 1e-3
+#: Share of the progress bar given to the approach: at large μ the retraction's peel traces about
+#: as many points as the approach (μ = 7, BEM draft: 124 and 182), at small μ next to none.
+#: test_bem_curve.py::test_progress_rises_to_one_at_the_end_only.
+APPROACH_SHARE = 0.6
+#: The retraction's progress stops here short of the end: the peel's remaining contact radius
+#: measures it, and the separation and the way back to x_start come after.
+RETRACTION_SHOWN_MAX = 0.98
 
 
 def _branch(grids, surface, w, delta, heading, settings, until, on_point):
@@ -133,13 +140,18 @@ def stable_paths(grids: Grids, settings, progress=None):
     grids: the surfaces to run on (`grids.Grids`): one `FixedGrid`, whose surface then holds
     every state of the Trace, or `EdgeGrids` that follow the contact edge from `grids.start`.
 
-    `progress(fraction)`: the approach runs to 0.85 (`approach_fraction`), the retraction on.
+    `progress(fraction)`: the approach runs to APPROACH_SHARE (`approach_fraction`), the
+    retraction on as its contact radius shrinks; 1 at the end only, never falling.
     Raises ContinuationError where a branch cannot be followed or a jump finds no landing.
     """
     traced, surface = Trace(), grids.start
     w, delta, traced.newton_iterations = start_state(surface, settings)
-    report = ((lambda tr: progress(0.85 * approach_fraction(tr.x[-1], tr.p[-1], settings)))
-              if progress else None)
+    shown = 0.0  # approach_fraction dips where the force falls after a jump-in: never shown
+
+    def report(tr):
+        nonlocal shown
+        shown = max(shown, APPROACH_SHARE * approach_fraction(tr.x[-1], tr.p[-1], settings))
+        progress(shown)
 
     def reached_end(tr):
         return tr.p[-1] >= settings.p_end
@@ -148,7 +160,8 @@ def stable_paths(grids: Grids, settings, progress=None):
     while True:
         starts.append(surface)
         branch, fold, beyond, surface, landed = _branch(grids, surface, w, delta, heading,
-                                                        settings, reached_end, report)
+                                                        settings, reached_end,
+                                                        report if progress else None)
         branches.append(branch)
         approach += [point_row(branch, i, len(jumps_in)) for i in range(len(branch.delta))]
         if fold is None:
@@ -178,12 +191,17 @@ def _retract(grids, starts, settings, branches, counter, progress):
     x_start again."""
     rows, jumps, extra = [], [], []
     j, c = len(branches) - 1, len(branches[-1].delta)
-    n_approach = sum(len(b.delta) for b in branches)
+    peel = {"from": None, "shown": 0.0}  # contact radius where the tracing began; shown so far
 
     def report(tr):
-        if progress is not None:
-            done = sum(len(b.delta) for b in extra) + len(tr.delta)
-            progress(0.85 + 0.15 * min(1.0, done / n_approach))
+        if progress is None or not tr.a_c:
+            return
+        if peel["from"] is None:
+            peel["from"] = tr.a_c[0]
+        if peel["from"] > 0.0:
+            peeled = 1.0 - tr.a_c[-1] / peel["from"]
+            peel["shown"] = max(peel["shown"], min(RETRACTION_SHOWN_MAX, peeled))
+        progress(APPROACH_SHARE + (1.0 - APPROACH_SHARE) * peel["shown"])
 
     def far(tr):
         return tr.x[-1] >= settings.x_start
