@@ -3,7 +3,8 @@
     F̄(d̃) = ∫ P̄(ζ(d̃ − z̃)) φ̃(z̃) dz̃,    S̄(d̃) = ∫ Ā(ζ(d̃ − z̃)) φ̃(z̃) dz̃,
 
 with F̄ = F/(2πR A₀ Δγ η) (negative = tensile) and S̄ = S/(R A₀ η ε). The integrals are taken in the
-asperity separation δ̄o = ζ(d̃ − z̃) over the heights |z̃| ≤ WINDOW/ω, split at the law's
+asperity separation δ̄o = ζ(d̃ − z̃) over the heights −WINDOW/ω ≤ z̃ ≤ `height_top` (WINDOW/ω, or
+higher where the asperities in contact come near it: see TAIL), split at 12/ω and the law's
 breakpoints (δ̄oc, δ̄o*, a jump). Each piece is cut into 20 equal panels, the two end panels
 refined geometrically toward the ends 12 times (the repulsive law grows like (δ̄oc − δ̄o)^(3/2)
 from a breakpoint; the LJ terms vary on the scale ε, possibly far below the Gaussian's σ), with 5
@@ -17,17 +18,39 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from fem_asperity.plumbing.checks import in_range
+from fem_asperity.plumbing.errors import InputError
 
 from .surface import height_pdf
 
-#: Heights beyond ±WINDOW/ω are left out: the Gaussian beyond 12 carries < 1e-31 (at 9 the
+#: Heights below −WINDOW/ω are left out, and those above +WINDOW/ω as long as the asperities come
+#: into contact below 8/ω (see TAIL): the Gaussian beyond 12 carries < 1e-31 (at 9 the
 #: deep-asperity repulsion left out was 1.6e-3 of a tiny F̄ at ζ = 500). Gauss points per panel,
 #: equal panels per piece and geometric levels of each end panel: as above. All four pinned by
 #: test_gw.py::test_totals_match_adaptive_quadrature_to_1e8.
 WINDOW = 12.0
+#: Above the height z̃c = d̃ − δ̄/ζ where asperities reach the law's lowest breakpoint δ̄ (contact),
+#: the heights are taken at least up to where the Gaussian has fallen by e^(−TAIL) from its value
+#: at z̃c: the asperities above z̃c press in, by P̄ ∝ (ζ(z̃ − z̃c)/μ)^(3/2), so that with a stiff law
+#: (small μ, large ζ) those above 12/ω still matter once z̃c nears 12/ω (μ = 1e-25, ζ = 1: F̄max
+#: is at d̃ = 14.2; with the heights cut at 12 it was found at the cut, 13, and 21% too large).
+#: e^(−40) is the fall the fixed window gives at z̃c = 8/ω, so up to there nothing changes.
+TAIL = 40.0
 #: Largest |d̃| taken: far beyond any asperity (12/ω) and the LJ range, yet small enough that
 #: ζ(d̃ ± 12/ω) stays finite (d̃ = 1e307 gave NaN). test_gw's bad-input test pins it.
 D_MAX = 1e6
+#: Largest ζ/μ = θ^(2/3) (θ: the Fuller-Tabor parameter) and 1/μ taken: the repulsion of the
+#: asperities pressed in, P̄ ∝ ((δ̄oc + ζ(z̃ − z̃c))/μ)^(3/2), stays far from overflow (ζ/μ ≈ 1e200
+#: and μ = 1e-300 gave inf − inf: NaN) and F̄max far from underflow (ζ = 1e99: 1e-201; ζ = 1e300
+#: gave F̄max = −0.0). Far beyond any surface (ζ = σ/ε ≲ 1e7, μ ≳ 1e-3), and checked against
+#: adaptive quadrature (2e-9) up to it: μ = 1e-50 at ζ = 1, ζ = 1e50 at μ = 1.
+#: test_gw.py::test_stiff_or_far_inputs_are_refused_up_front pins it.
+RATIO_MAX = 1e50
+#: Most times `strength` extends its d̃ grid past an end (by the width of `separation_range`,
+#: at the same spacing) to bring the deepest F̄ inside it.
+EXTENSIONS = 8
+#: Relative margin by which an end of the grid must lie below its interior to count as lower
+#: (F̄ flat to rounding, e.g. JKR's plateau at large μ, small ζ, is not extended).
+FLAT = 1e-12
 _GAUSS = np.polynomial.legendre.leggauss(5)
 _UNIFORM, _LEVELS = 20, 12
 
@@ -49,8 +72,13 @@ def totals(law, surface, d):
     """(F̄, S̄) at the mean separations `d` (d̃, in σ; array or scalar) for `law` on `surface`."""
     d = np.atleast_1d(in_range("d", d, -D_MAX, D_MAX)).astype(float)
     zeta, omega = surface.zeta, surface.omega
-    lo, hi = zeta * (d - WINDOW / omega), zeta * (d + WINDOW / omega)  # δ̄o range per d̃
-    cuts = [lo] + [np.clip(b, lo, hi) for b in law.breakpoints] + [hi]
+    _check_stiffness(law, surface)
+    contact = d - min(law.breakpoints or (1.0,)) / zeta  # z̃c
+    lo, hi = zeta * (d - height_top(contact, omega)), zeta * (d + WINDOW / omega)  # δ̄o range
+    cuts = [lo, *(np.clip(b, lo, hi) for b in law.breakpoints), hi]
+    window_top = np.clip(zeta * (d - WINDOW / omega), lo, hi)
+    if np.any(window_top > lo):  # heights above 12/ω: their own piece, the Gaussian's bulk kept
+        cuts = np.sort([window_top, *cuts], axis=0)
     force, area = np.zeros(d.size), np.zeros(d.size)
     for a, b in zip(cuts[:-1], cuts[1:]):
         delta = a[:, None] + (b - a)[:, None] * _NODES
@@ -58,6 +86,22 @@ def totals(law, surface, d):
         force += np.sum(weight * law.force(delta), axis=1)
         area += np.sum(weight * law.area(delta), axis=1)
     return force, area
+
+
+def height_top(contact, omega):
+    """Highest asperity height z̃ integrated when the asperities reach contact at height
+    `contact` (z̃c): WINDOW/ω, or higher once z̃c > 8/ω (`TAIL`)."""
+    above = np.maximum(omega * np.asarray(contact, dtype=float), 0.0)
+    return np.maximum(WINDOW, np.sqrt(above**2 + 2.0 * TAIL)) / omega
+
+
+def _check_stiffness(law, surface):
+    """Refuse ζ/μ or 1/μ beyond RATIO_MAX."""
+    if not max(surface.zeta, 1.0) / law.mu < RATIO_MAX:
+        raise InputError(
+            f"zeta/mu and 1/mu must be < {RATIO_MAX:g} for the GW integrals (the asperities' "
+            f"repulsion grows like (zeta/mu)^1.5); got zeta = {surface.zeta:g}, mu = {law.mu:g}"
+        )
 
 
 @dataclass(frozen=True)
@@ -79,13 +123,63 @@ def separation_range(law, surface):
 def strength(law, surface, *, samples=48):
     """F̄max and its d̃: the lowest of `samples` values of F̄ on a d̃ grid over
     `separation_range`, refined by bounded Brent between its grid neighbours (F̄ can have more
-    than one local minimum; the grid picks the deepest)."""
+    than one local minimum; the grid picks the deepest).
+
+    While the lowest value sits on an end of the grid (a stiff law, small μ or large ζ, can put
+    F̄max above the upper end; a smooth surface, ζ ≪ μ, below the lower one) the grid is extended
+    past that end by its first width, at the same spacing, up to EXTENSIONS times. `InputError` if
+    F̄max is still not bracketed, if the grid would leave |d̃| < D_MAX, or for ζ/μ or 1/μ beyond
+    RATIO_MAX; F̄max is > 0 and finite otherwise.
+    """
+    if samples < 3:
+        raise InputError(f"samples must be at least 3; got {samples!r}")
+    _check_stiffness(law, surface)
     lo, hi = separation_range(law, surface)
+    _check_grid(lo, hi, law, surface)
     grid = np.linspace(lo, hi, samples)
     f = totals(law, surface, grid)[0]
-    k = int(np.argmin(f))
-    a, b = grid[max(k - 1, 0)], grid[min(k + 1, samples - 1)]
-    best = minimize_scalar(lambda x: totals(law, surface, x)[0][0], bounds=(a, b),
-                           method="bounded", options={"xatol": 1e-10 * max(1.0, abs(hi - lo))})
+    step, width = grid[1] - grid[0], hi - lo
+    for extension in range(EXTENSIONS + 1):
+        k = _deepest(f)
+        if 0 < k < grid.size - 1:
+            break
+        if extension == EXTENSIONS:
+            raise InputError(
+                f"F_max not bracketed for mu = {law.mu:g}, zeta = {surface.zeta:g}, omega = "
+                f"{surface.omega:g}: F still falls at d/sigma = {grid[k]:g}, {EXTENSIONS} x "
+                f"{width:g} beyond the search range {lo:g} to {hi:g}"
+            )
+        new = grid[k] + (1.0 if k else -1.0) * step * np.arange(1, samples)
+        _check_grid(new.min(), new.max(), law, surface)
+        f_new = totals(law, surface, new)[0]
+        if k:
+            grid, f = np.concatenate([grid, new]), np.concatenate([f, f_new])
+        else:
+            grid, f = np.concatenate([new[::-1], grid]), np.concatenate([f_new[::-1], f])
+    best = minimize_scalar(lambda x: totals(law, surface, x)[0][0],
+                           bounds=(grid[k - 1], grid[k + 1]), method="bounded",
+                           options={"xatol": 1e-10 * max(1.0, abs(width))})
     d_star, f_star = (best.x, best.fun) if best.fun < f[k] else (grid[k], f[k])
-    return Strength(f_max=float(-f_star), d_at_max=float(d_star))
+    if not f_star < 0.0:  # no adhesion left to resolve (or not finite)
+        raise InputError(
+            f"F_max not resolved for mu = {law.mu:g}, zeta = {surface.zeta:g}, omega = "
+            f"{surface.omega:g}: the lowest F found is {f_star!r}"
+        )
+    return Strength(f_max=float(-f_star), d_at_max=float(d_star) + 0.0)  # never −0.0
+
+
+def _deepest(f):
+    """Index of the lowest F̄; an end only if below every interior value by more than FLAT."""
+    k, inner = int(np.argmin(f)), 1 + int(np.argmin(f[1:-1]))
+    return k if f[k] < f[inner] - FLAT * abs(f[inner]) else inner
+
+
+def _check_grid(lo, hi, law, surface):
+    """Refuse a d̃ search range that leaves |d̃| < D_MAX (ζ small beside the law's breakpoints,
+    or ω small)."""
+    if not (-D_MAX < lo and hi < D_MAX):
+        raise InputError(
+            f"F_max would be searched at d/sigma from {lo:g} to {hi:g} for mu = {law.mu:g}, "
+            f"zeta = {surface.zeta:g}, omega = {surface.omega:g}: outside the supported "
+            f"|d/sigma| < {D_MAX:g} (breakpoints/zeta and 12/omega must stay below it)"
+        )

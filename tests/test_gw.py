@@ -12,7 +12,7 @@ from fem_asperity import InputError
 from fem_asperity.closed_forms.laws import PAPER_LAWS
 from fem_asperity.closed_forms.lj import bradley_force
 from fem_asperity.path.curve import curve_from_columns
-from gw.integrate import WINDOW, strength, totals
+from gw.integrate import D_MAX, RATIO_MAX, WINDOW, separation_range, strength, totals
 from gw.laws import PaperLaw, TabulatedLaw
 from gw.surface import MCCOOL_MIN, RoughSurface, height_pdf, omega_mccool, theta, xi
 
@@ -20,11 +20,12 @@ CASES = [(0.1, 0.2, 1.0), (0.3, 0.05, 1.0), (0.49, 1.0, 0.2), (1.0, 6.667, 0.9),
          (10.0, 6.667, 0.5), (46.9, 6.67, 0.3), (0.3, 500.0, 1.0), (2.0, 100.0, 0.99)]
 
 
-def adaptive(law, surface, d, column):
-    """F̄ or S̄ by scipy's adaptive quadrature over z̃, split at the breakpoints, ±(WINDOW+3)/ω."""
+def adaptive(law, surface, d, column, *, above=0.0):
+    """F̄ or S̄ by scipy's adaptive quadrature over z̃, split at the breakpoints, ±(WINDOW+3)/ω
+    (up to `above`/ω higher: the asperities in contact when d̃ nears 12/ω)."""
     zeta, omega = surface.zeta, surface.omega
     values = getattr(law, column)
-    lo, hi = -(WINDOW + 3) / omega, (WINDOW + 3) / omega
+    lo, hi = -(WINDOW + 3) / omega, (WINDOW + 3 + above) / omega
     cuts = sorted([lo, hi] + [d - b / zeta for b in law.breakpoints if lo < d - b / zeta < hi])
     return sum(quad(lambda z: values(zeta * (d - z)) * height_pdf(z, omega), a, b,
                     epsabs=0.0, epsrel=1e-13, limit=500)[0] for a, b in zip(cuts[:-1], cuts[1:]))
@@ -66,6 +67,70 @@ def test_strength_tends_to_jkr_at_large_mu_and_small_roughness():
     assert found.f_max == pytest.approx(0.75, abs=2e-3)
 
 
+@pytest.mark.filterwarnings("ignore::scipy.integrate.IntegrationWarning")
+@pytest.mark.parametrize("mu, zeta, omega", [
+    (1e-20, 1.0, 1.0),  # stiff law: F̄max found 0.7% too large at d̃ = 12.8 (heights cut at 12)
+    (1e-25, 1.0, 1.0),  # F̄max beyond the search range: found at its end, d̃ = 13, 21% too large
+    (1e-25, 1.0, 0.3),
+    (1.0, 1e10, 1.0),  # rough: F̄max found at d̃ = 12.0, the end of the height window
+    (1.0, 1e-5, 1.0),  # smooth: F̄max below the search range's lower end (JKR-like plateau)
+])
+def test_strength_is_an_interior_maximum_of_the_adaptive_quadrature(mu, zeta, omega):
+    """F̄max by `strength` against F̄ by adaptive quadrature over the heights up to 15/ω above
+    the contact edge z̃c = d̃ − δ̄oc/ζ: the quadrature's F̄ is lowest at the d̃ found, not on
+    either side of it, and equals −F̄max."""
+    law, surface = PaperLaw(mu), RoughSurface(zeta, omega)
+    found = strength(law, surface)
+    d = found.d_at_max + np.array([-0.1, 0.0, 0.1]) / omega
+    edge = d - min(law.breakpoints) / zeta
+    ref = [adaptive(law, surface, di, "force", above=max(e * omega, 0.0)) for di, e in zip(d, edge)]
+    assert ref[1] < min(ref[0], ref[2])
+    assert found.f_max == pytest.approx(-ref[1], rel=1e-8)
+
+
+def test_strength_refuses_a_maximum_it_cannot_bracket():
+    """A law whose pull grows without end (F̄ keeps falling with d̃): no maximum to return."""
+
+    class Endless:
+        mu, name, breakpoints = 1.0, "endless", (1.0,)
+
+        @staticmethod
+        def force(delta):
+            return -np.arctan(delta)
+
+        @staticmethod
+        def area(delta):
+            return np.zeros(np.shape(delta))
+
+    with pytest.raises(InputError, match="not bracketed"):
+        strength(Endless(), RoughSurface(1.0, 1.0))
+
+
+@pytest.mark.parametrize("mu, zeta, match", [
+    (1.0, 1e300, "zeta/mu and 1/mu must be < "),  # F̄max was -0.0 (with overflow warnings)
+    (1e-300, 1.0, "zeta/mu and 1/mu must be < "),  # repulsion (ζ/μ)^1.5 overflowed: inf - inf
+    (1e-60, 1e-20, "zeta/mu and 1/mu must be < "),  # P̄ ∝ μ^(-3/2) at δ̄o = 0: 1e90
+    (1.0, 1e-300, "supported [|]d/sigma[|] < "),  # searched at d̃ = 3e300, refused as "d"
+])
+def test_stiff_or_far_inputs_are_refused_up_front(mu, zeta, match):
+    law, surface = PaperLaw(mu), RoughSurface(zeta, 1.0)
+    with pytest.raises(InputError, match=match):
+        strength(law, surface)
+    assert RATIO_MAX == 1e50 and D_MAX == 1e6  # the ranges named in the messages
+
+
+@pytest.mark.parametrize("mu, zeta", [(1.0, 0.99e50), (1.01e-50, 1.0)])
+def test_strength_at_the_ends_of_the_supported_range_is_positive_and_interior(mu, zeta):
+    law, surface = PaperLaw(mu), RoughSurface(zeta, 1.0)
+    found = strength(law, surface)
+    assert np.isfinite(found.f_max) and found.f_max > 0.0
+    assert found.d_at_max > separation_range(law, surface)[1]  # beyond the first search range
+    near = totals(law, surface, found.d_at_max + np.array([-0.05, 0.05]))[0]
+    assert -found.f_max < near.min()
+    force = totals(law, surface, np.linspace(-3.0, 40.0, 9))[0]
+    assert np.all(np.isfinite(force))
+
+
 def test_tabulated_law_reproduces_its_samples_and_extends():
     delta = 1.0 + 39.0 * np.linspace(1.0, 0.0, 200) ** 2  # dense where P̄ is steep
     force, area = bradley_force(delta), np.zeros_like(delta)
@@ -97,6 +162,20 @@ def gw_cli(*args):
     return subprocess.run([sys.executable, "-m", "gw", *args], capture_output=True, text=True)
 
 
+def test_cli_fmax_never_prints_negative_zero():
+    """ζ = 1e300 printed f_max = -0 (exit 0); now refused in one line, naming the range."""
+    done = gw_cli("fmax", "--mu", "1", "--zeta", "1e300", "--json")
+    assert done.returncode == 2 and "-0.0" not in done.stdout
+    assert done.stderr.strip().splitlines() == [
+        "python -m gw: error: zeta/mu and 1/mu must be < 1e+50 for the GW integrals (the "
+        "asperities' repulsion grows like (zeta/mu)^1.5); got zeta = 1e+300, mu = 1"]
+    done = gw_cli("fmax", "--mu", "1e-25", "--zeta", "1", "--json")
+    assert done.returncode == 0, done.stderr
+    row = json.loads(done.stdout)
+    assert row["f_max"] == pytest.approx(0.0066337425, rel=1e-8)
+    assert row["d_at_max"] > separation_range(PaperLaw(1e-25), RoughSurface(1.0))[1]
+
+
 def test_cli_fmax_and_curve_json():
     done = gw_cli("fmax", "--mu", "1", "--zeta", "6.67", "--omega", "0.9", "--json")
     assert done.returncode == 0, done.stderr
@@ -119,6 +198,7 @@ def test_cli_fmax_and_curve_json():
     ["fmax", "--mu", "1", "--zeta", "1", "--law", "fitted"], ["fmax", "--sigma", "1e-9"],
     ["curve", "--mu", "1", "--zeta", "1", "--points", "1"],
     ["curve", "--mu", "1", "--zeta", "6", "--d", "1e307", "1e308", "--points", "3"],
+    ["curve", "--mu", "1", "--zeta", "1e300", "--points", "3"],  # printed F as "-" (NaN)
     ["fmax", "--sigma", "2e-9", "--eps", "3e-10", "--radius", "1e-6", "--density", "2e13",
      "--estar", "1e9", "--work-of-adhesion", "0.05", "--omega", "0.5"],  # omega is eq. 20's
 ])
