@@ -10,7 +10,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from ..plumbing.checks import in_range, positive
+from ..plumbing.checks import finite_result, in_range, positive
 from ..plumbing.errors import InputError
 from .lj import bradley_force, separation_from_gap
 
@@ -143,7 +143,10 @@ class AsperityLaws:
         (Bradley's law itself) with it; below δ̄oc: P̄max plus Hertz (eqs. 16, 18).
         """
         delta_o, mu = np.broadcast_arrays(in_range("delta_o", delta_o), _mu(mu))
-        return _out(_force(delta_o, mu, *self._force_constants(mu)))
+        with np.errstate(over="ignore"):
+            force = _force(delta_o, mu, *self._force_constants(mu))
+        return _out(finite_result(force, "the force (the Hertz compression (δ̄oc − δ̄o)/μ "
+                                         "raised to 3/2)"))
 
     def area(self, delta_o, *, mu):
         """Contact area Ā(δ̄o) on approach (eqs. 11, 15, 17, 19), broadcast over δ̄o and μ.

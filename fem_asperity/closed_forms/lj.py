@@ -6,7 +6,7 @@ Gaps are in units of ε (h̄ = h/ε); forces in 2πRΔγ; deflections in ε, pos
 
 import numpy as np
 
-from ..plumbing.checks import positive
+from ..plumbing.checks import finite_result, positive
 
 #: ∫₀^∞(1+t²)⁻⁹dt / ∫₀^∞(1+t²)⁻³dt, the constant of eq. (4).
 K_9_3 = 2145.0 / 4096.0
@@ -57,8 +57,11 @@ def bradley_force(delta):
 
     `delta` in ε (> 0); force in 2πRΔγ, negative = attractive; minimum −1 at δ̄ = 1 (Bradley).
     """
-    d = positive("delta", delta)
-    return (d**-8 - 4.0 * d**-2) / 3.0
+    d = np.asarray(positive("delta", delta))
+    with np.errstate(over="ignore"):
+        force = (d**-8 - 4.0 * d**-2) / 3.0
+    force = finite_result(force, lambda: f"Bradley's force at delta = {np.min(d):g}")
+    return float(force) if force.ndim == 0 else force
 
 
 def centre_deflection(x, *, mu):

@@ -37,6 +37,16 @@ def in_range(name, value, lo=-np.inf, hi=np.inf, *, closed_lo=False, unit=""):
     return _scalar_or_array(arr)
 
 
+def finite_result(value, what):
+    """`value` if every entry is finite, else `InputError` saying that `what` (the quantity and
+    the inputs that produced it; a callable giving that text) leaves the float range: no inf or
+    NaN leaves the package."""
+    if np.all(np.isfinite(value)):
+        return value
+    what = what() if callable(what) else what
+    raise InputError(f"{what} is beyond the float range (about 1.8e308); use less extreme inputs")
+
+
 def positive(name, value, unit=""):
     """Return `value` if it is finite and > 0 everywhere, else raise `InputError`."""
     return in_range(name, value, 0.0, np.inf, unit=unit)
