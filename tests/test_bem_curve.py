@@ -13,22 +13,21 @@ from fem_asperity.studies.onset import fold_margin
 
 
 @pytest.mark.parametrize("mu", [0.1, 0.5, 1.0, pytest.param(3.0, marks=pytest.mark.slow)])
-def test_bem_agrees_with_fem_within_the_fem_error_estimate(mu):
-    """Every event of the FE at `default` lies within its own error estimate of the BEM at
-    `fine` (the BEM's `default` is itself up to 7e-5 off in x̄oc at μ = 3).
-
-    (At `draft` the FE's estimate is not always a bound: at μ = 0.1 it says 8.4e-6 for δ̄o*,
-    whose draft error is 7.9e-5, and at μ = 3 5e-4 for ā_c, off by 0.037: δ̄oc and ā_c sit on a
-    flat maximum of the tension that the draft mesh ripples.)"""
+def test_bem_agrees_with_fem_within_the_error_estimates(mu):
+    """Two independent methods: every event of the FE at `default` lies within the two error
+    estimates (the FE's own and that of the BEM at `fine`) of the BEM's. The BEM's is needed for
+    ā_c, which converges slowly and irregularly (it is read where the traction changes sign
+    between nodes): at μ = 3 the BEM `fine` is itself 1.1e-3 off in ā_c, more than the FE's
+    estimate (2.8e-4)."""
     fem = solve_curve(mu, method="fem", accuracy="default")
-    bem = solve_curve(mu, method="bem", accuracy="fine", error_estimate=False)
+    bem = solve_curve(mu, method="bem", accuracy="fine")
     a, b = fem.events.records(), bem.events.records()
     assert a["jump_in"] == b["jump_in"]
     for key in ESTIMATED:
         if a[key] is None:
             assert b[key] is None, key
         else:
-            assert abs(a[key] - b[key]) <= fem.error_estimate[key], key
+            assert abs(a[key] - b[key]) <= fem.error_estimate[key] + bem.error_estimate[key], key
 
 
 def test_bem_result_provenance():

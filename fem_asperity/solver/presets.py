@@ -31,7 +31,7 @@ MAX_TURN = 0.2
 #: FE surface element length of `default`: min(H_MAX, H_COHESIVE · μ^(−3/2)), in √(Rε) (surface
 #: edges come out between ⅔ of it and all of it, `solids.mesh.graded_mesh`).
 #: H_MAX = 1/16: at 1/10 the FE separations at μ = 1 move by more than the error estimate says;
-#: test_bem_curve.py::test_bem_agrees_with_fem_within_the_fem_error_estimate.
+#: test_bem_curve.py::test_bem_agrees_with_fem_within_the_error_estimates.
 #: H_COHESIVE = 0.2: at 0.25 the P2 surface ripples at μ = 5. Not pinned by a test.
 H_MAX, H_COHESIVE = 0.0625, 0.2
 #: BEM element length of `default` at large μ, H_COHESIVE_BEM · μ^(−3/2) with 0.125: no ripple
@@ -50,7 +50,7 @@ DOMAIN_SIZE = 1e3
 TRACTION_RADIUS = 100.0
 #: FE bulk grading (element size growth per unit distance from the surface strip), 0.2: at 0.3
 #: the error estimate missed the force after the jump-in at μ = 3, at 0.2 it bounds every event;
-#: test_bem_curve.py::test_bem_agrees_with_fem_within_the_fem_error_estimate (μ = 3 is slow).
+#: test_bem_curve.py::test_bem_agrees_with_fem_within_the_error_estimates (μ = 3 is slow).
 FE_GRADING = 0.2
 #: From MU_TRACKING = 6 on the boundary-integral grids follow the contact edge (`path.grids`),
 #: where a uniform grid fine enough for the edge (n ∝ μ² nodes) outgrows the grids' overhead: fine
@@ -84,7 +84,7 @@ METHODS = ("fem", "bem")
 #: The error estimate's finer solve grades the bulk (FE) or tail (BEM) twice as gently, so the
 #: estimate also sees the bulk mesh, which dominates the FE's δ̄oc error at small μ (μ = 0.5: 6e-7
 #: off at grading 0.2, 2e-8 at 0.067; with 5/3 the estimate missed it by 10%, 3 cost 5 times as
-#: much as 2); test_bem_curve.py::test_bem_agrees_with_fem_within_the_fem_error_estimate.
+#: much as 2); test_bem_curve.py::test_bem_agrees_with_fem_within_the_error_estimates.
 ESTIMATE_GRADING = 2.0
 
 
