@@ -83,8 +83,10 @@ RIPPLE_MARGIN = 1.25
 METHODS = ("fem", "bem")
 #: The error estimate's finer solve grades the bulk (FE) or tail (BEM) twice as gently, so the
 #: estimate also sees the bulk mesh, which dominates the FE's δ̄oc error at small μ (μ = 0.5: 6e-7
-#: off at grading 0.2, 2e-8 at 0.067; with 5/3 the estimate missed it by 10%, 3 cost 5 times as
-#: much as 2); test_bem_curve.py::test_bem_agrees_with_fem_within_the_error_estimates.
+#: off at grading 0.2, 2e-8 at 0.067). With 1 (the grading kept) the FE's estimate of δ̄ at the
+#: jump-in at μ = 1, 4.2e-6, missed its error, 7.4e-6; with 1.5 that of δ̄oc at μ = 0.5, 9e-8,
+#: missed 6e-7. It costs the FE's second solve 2.6-2.8 times the DOFs at μ = 0.5 and 3;
+#: test_bem_curve.py::test_bem_agrees_with_fem_within_the_error_estimates.
 ESTIMATE_GRADING = 2.0
 
 
