@@ -114,3 +114,22 @@ def test_bad_input():
         solve_curve(1.0, accuracy="best")
     with pytest.raises(InputError, match="radius_ratio"):
         solve_curve(1.0, radius_ratio=2.0)
+
+
+def test_a_saved_result_records_every_input_the_version_and_the_revision():
+    """result.json tells a layered curve from a homogeneous one, and names the code."""
+    import json
+
+    import fem_asperity
+    from fem_asperity.plumbing.revision import solver_revision
+    from fem_asperity.solver.result import curve_files
+
+    solid = Solid(layer_thickness=0.5, layer_modulus_ratio=0.5)
+    result = solve_curve(0.3, accuracy="draft", solid=solid, error_estimate=False)
+    saved = json.loads(curve_files(result)["result.json"])
+    assert saved["inputs"]["solid"] == {"nu": 0.3, "layer_thickness": 0.5,
+                                        "layer_modulus_ratio": 0.5, "layer_nu": 0.3}
+    assert saved["inputs"]["profile"] == "derjaguin" and saved["inputs"]["radius_ratio"] is None
+    assert saved["inputs"]["control"] == "displacement" and saved["inputs"]["p_end"] == 1.0
+    assert saved["version"] == fem_asperity.__version__
+    assert saved["solver_revision"] == solver_revision() and len(saved["solver_revision"]) == 10

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-import fem_asperity.studies.store as store
+import fem_asperity.plumbing.revision as revision
 
 PACKAGE = Path(importlib.import_module("fem_asperity").__file__).parent
 #: Bottom up; a module may import from its own subpackage and from those before it.
@@ -77,14 +77,14 @@ def test_the_closed_forms_load_without_the_solvers():
 
 
 def test_the_refit_is_keyed_by_its_own_code_as_well():
-    covered = set(store.revision_modules(("fem_asperity.studies.refit",)))
+    covered = set(revision.revision_modules(("fem_asperity.studies.refit",)))
     assert {"fem_asperity.studies.refit", "fem_asperity.studies.onset",
             "fem_asperity.closed_forms.laws"} <= covered
-    assert set(store.revision_modules()) <= covered
+    assert set(revision.revision_modules()) <= covered
 
 
 def test_the_revision_key_covers_the_solver_and_not_the_interfaces():
-    covered = set(store.revision_modules())
+    covered = set(revision.revision_modules())
     for module in ("solver.solve", "solver.presets", "solver.result", "path.continuation",
                    "path.grids", "path.landing", "solids.fe", "solids.bem", "closed_forms.lj",
                    "studies.store"):
@@ -96,7 +96,7 @@ def test_the_revision_key_covers_the_solver_and_not_the_interfaces():
 
 def _revision_with(monkeypatch, module, edit):
     """solver_revision() after `edit` (text → text) of `module`'s source, read through the hook
-    the store uses (the file on disk is never touched)."""
+    the revision uses (the file on disk is never touched)."""
     origin = Path(importlib.util.find_spec(module).origin)
     real_read = Path.read_bytes
 
@@ -108,21 +108,21 @@ def _revision_with(monkeypatch, module, edit):
         return edit(data.decode()).encode() if self == origin else data
 
     monkeypatch.setattr(Path, "read_bytes", read_bytes)
-    store.code_revision.cache_clear()
-    store._source.cache_clear()
+    revision.code_revision.cache_clear()
+    revision._source.cache_clear()
     try:
-        return store.solver_revision()
+        return revision.solver_revision()
     finally:
         monkeypatch.undo()
-        store.code_revision.cache_clear()
-        store._source.cache_clear()
+        revision.code_revision.cache_clear()
+        revision._source.cache_clear()
 
 
 def test_editing_help_or_a_plot_keeps_stored_curves_and_editing_the_solver_discards_them(
         monkeypatch):
-    store.code_revision.cache_clear()
-    store._source.cache_clear()
-    today = store.solver_revision()
+    revision.code_revision.cache_clear()
+    revision._source.cache_clear()
+    today = revision.solver_revision()
     help_edit = _revision_with(monkeypatch, "fem_asperity.__main__",
                                lambda s: s.replace('help="print JSON', 'help="write JSON'))
     plot_edit = _revision_with(monkeypatch, "fem_asperity.solver.output",

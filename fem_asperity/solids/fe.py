@@ -71,6 +71,14 @@ class Solid:
         elif self.layer_modulus_ratio != 1.0 or self.layer_nu != self.nu:
             raise InputError("layer_modulus_ratio and layer_nu need a layer_thickness")
 
+    def description(self):
+        """One phrase for titles: the homogeneous half-space, or the layer's thickness and
+        modulus ratio."""
+        if self.layer_thickness is None:
+            return "homogeneous half-space"
+        return (f"layer t = {self.layer_thickness:g} √(Rε), E*_layer/E*_substrate = "
+                f"{self.layer_modulus_ratio:g}")
+
     def lame(self, in_layer):
         """Lamé constants (λ, G) per element; `in_layer` is a boolean array over elements."""
         e_star = np.where(in_layer, self.layer_modulus_ratio, 1.0)

@@ -35,7 +35,9 @@ def plot_curve(result, path):
         ax.grid(alpha=0.3)
     axes[0].set_ylim(-1.1, max(0.2, min(1.2, float(np.max(eq.p)))))
     axes[0].legend()
-    fig.suptitle(f"{result.method.upper()}, μ = {result.mu:g}, accuracy '{result.accuracy}'")
+    profile = "" if result.radius_ratio is None else f", sphere R/ε = {result.radius_ratio:g}"
+    fig.suptitle(f"{result.method.upper()}, μ = {result.mu:g}, accuracy '{result.accuracy}', "
+                 f"{result.solid.description()}{profile}, displacement control")
     return save_figure(fig, path)
 
 

@@ -2,11 +2,13 @@
 own files (`write_curves`: the CSV curves and result.json, the format the store reads back)."""
 
 import json
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 from ..path.curve import Curve, Events
 from ..plumbing.files import write_atomic
+from ..plumbing.revision import solver_revision
+from ..plumbing.version import __version__
 from ..solids.fe import Solid
 from ..solids.operator import ElasticSurface
 
@@ -57,6 +59,8 @@ class CurveResult:
     holds the same relative to the event.
     dofs, surface_nodes, points, newton_iterations, wall_s: cost.
     folds: folds of δ̄o met: changes of stability along the whole curve, or jumps of the paths.
+    radius_ratio (R/ε of the exact sphere; None: Derjaguin's parabola), p_end, unstable_branch:
+    the inputs of `solve_curve` beyond μ, method, accuracy and solid.
     status: one of `STATUSES` ('ok' unless something calls for a finer accuracy);
     message: how it was obtained, and why the status is not 'ok' where it is not.
     """
@@ -78,6 +82,9 @@ class CurveResult:
     method: str = "fem"
     status: str = "ok"
     message: str = ""
+    radius_ratio: float | None = None
+    p_end: float = 1.0
+    unstable_branch: bool = False
     model: Model | None = field(default=None, repr=False, compare=False)
 
     @property
@@ -90,8 +97,17 @@ class CurveResult:
         """More folds than one jump-in and one jump-out: the sign of a surface mesh too coarse."""
         return self.folds > PHYSICAL_FOLDS
 
+    def inputs(self):
+        """Every input that produced the curve, JSON-ready: the solid (layer included), the
+        profile, the control and the paths traced."""
+        return {"solid": asdict(self.solid),
+                "profile": "derjaguin" if self.radius_ratio is None else "sphere",
+                "radius_ratio": self.radius_ratio, "control": "displacement",
+                "p_end": self.p_end, "unstable_branch": self.unstable_branch}
+
     def records(self):
-        """JSON-ready dict: the command line's keys (dimensionless, tensile forces negative)."""
+        """JSON-ready dict: the command line's keys (dimensionless, tensile forces negative),
+        then the inputs, the package version and the solver's revision (`plumbing.revision`)."""
         return {
             "mu": self.mu,
             "method": self.method,
@@ -106,6 +122,9 @@ class CurveResult:
             "wall_s": self.wall_s,
             "status": self.status,
             "message": self.message,
+            "inputs": self.inputs(),
+            "version": __version__,
+            "solver_revision": solver_revision(),
         }
 
 

@@ -89,6 +89,9 @@ def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, unstable_br
         method=disc.method,
         status=status,
         message=message,
+        radius_ratio=radius_ratio,
+        p_end=disc.trace.p_end,
+        unstable_branch=unstable_branch,
         model=Model(grids.elastic, grids.start, traced) if fixed else None,
     )
 

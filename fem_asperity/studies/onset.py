@@ -23,9 +23,10 @@ from threadpoolctl import threadpool_limits
 from ..path.continuation import trace
 from ..path.curve import parabola_vertex
 from ..plumbing.errors import InputError
+from ..plumbing.revision import code_revision
 from ..solver.presets import discretisation
 from ..solver.solve import PATH_BLAS_THREADS
-from .store import cache_dir, code_revision, stored_json
+from .store import cache_dir, stored_json
 
 
 def fold_margin(mu, *, method="bem", accuracy="default"):

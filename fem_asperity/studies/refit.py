@@ -20,8 +20,9 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from ..closed_forms.laws import AsperityLaws, wu_pull_off
+from ..plumbing.revision import code_revision
 from .onset import stored_onset
-from .store import cache_dir, code_revision, stored_curve, stored_json
+from .store import cache_dir, stored_curve, stored_json
 
 #: Tabor parameters of the refit: both regimes, on uniform BEM grids (below MU_TRACKING), where a
 #: curve is cheap. Not pinned by a test (test_refit.py fits its own μ).

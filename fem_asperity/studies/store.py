@@ -8,31 +8,22 @@ Folders carry the solver's revision (`solver_revision`): a changed solver solves
 of serving an older solver's curves.
 """
 
-import ast
 import contextlib
 import hashlib
-import importlib.util
 import io
 import json
 import os
 import warnings
 from dataclasses import asdict, dataclass
-from functools import cache
 from pathlib import Path
 
 import numpy as np
 
 from ..path.curve import Curve, Events, Jump, curve_from_columns
 from ..plumbing.files import writable_folder, write_atomic
+from ..plumbing.revision import solver_revision
 from ..solver.result import curve_files, relative_estimate
 from ..solver.solve import solve_curve
-
-#: The modules whose code computes a stored curve, and the modules they import from the package:
-#: the solve itself (`solver.solve`, with the presets, paths, solids and closed forms below it)
-#: and this module, which reads and writes the stored format. The CLI, figures and field output
-#: are outside: editing them keeps the stored curves.
-REVISION_ROOTS = ("fem_asperity.solver.solve", __name__)
-
 
 #: Cost columns of a stored curve (from its result.json).
 COST_KEYS = ("dofs", "surface_nodes", "points", "newton_iterations", "wall_s")
@@ -68,60 +59,6 @@ class StoredCurve:
 def cache_dir():
     """Folder of stored curves."""
     return Path(os.environ.get("ADHESION_CACHE", Path.home() / ".cache" / "adhesion-verification"))
-
-
-@cache
-def _source(module):
-    """The source bytes of `module` (read once per process)."""
-    return Path(importlib.util.find_spec(module).origin).read_bytes()
-
-
-def _package_imports(module):
-    """Absolute names of the fem_asperity modules `module` imports from (the package imports
-    from modules only: `from ..path.curve import Curve`, never `from .. import path`)."""
-    tree = ast.parse(_source(module))
-    package = module.rsplit(".", 1)[0]
-    found = {importlib.util.resolve_name("." * node.level + (node.module or ""), package)
-             for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)}
-    return {name for name in found if name.split(".")[0] == "fem_asperity"}
-
-
-def revision_modules(roots=REVISION_ROOTS):
-    """The fem_asperity modules reachable by imports from `roots`, sorted."""
-    seen, todo = set(), list(roots)
-    while todo:
-        module = todo.pop()
-        if module not in seen:
-            seen.add(module)
-            todo.extend(_package_imports(module))
-    return sorted(seen)
-
-
-def _code_digest(module):
-    """The module's syntax tree without docstrings: comments, docstrings and layout do not count."""
-    tree = ast.parse(_source(module))
-    for node in ast.walk(tree):
-        body = getattr(node, "body", None)
-        if (isinstance(body, list) and body and isinstance(body[0], ast.Expr)
-                and isinstance(body[0].value, ast.Constant)
-                and isinstance(body[0].value.value, str)):
-            node.body = body[1:] or [ast.Pass()]
-    return ast.dump(tree).encode()
-
-
-@cache
-def code_revision(*roots):
-    """First 10 hex digits of the SHA-256 of the code of `revision_modules(roots)` (syntax trees
-    without docstrings, so editing a comment or a docstring keeps what was stored)."""
-    digest = hashlib.sha256()
-    for module in revision_modules(roots):
-        digest.update(module.encode() + b"\0" + _code_digest(module))
-    return digest.hexdigest()[:10]
-
-
-def solver_revision():
-    """The revision of the code that computes a stored curve (REVISION_ROOTS)."""
-    return code_revision(*REVISION_ROOTS)
 
 
 def _events_from_dict(data):
