@@ -14,7 +14,6 @@ import argparse
 import sys
 from dataclasses import replace
 
-import numpy as np
 from provenance import add_output_options, provenance, write_results
 
 from fem_asperity.solver.presets import RIPPLE_FREE, discretisation
@@ -39,7 +38,7 @@ def run(grid, mu, c):
     method = "fem" if grid == "fem" else "bem"
     track = None if method == "fem" else grid == "edge"
     disc = discretisation(mu, "default", method=method, track_edge=track)
-    disc = replace(disc, h_surface=c * mu**-2.0, h_ripple=np.inf)
+    disc = replace(disc, h_surface=c * mu**-2.0)
     result = solve_discretised(mu, disc)
     row = {"grid": grid, "mu": mu, "c": c, "h_surface": disc.h_surface, "folds": result.folds,
            "wall_s": result.wall_s, "ripple_free_c": RIPPLE_FREE[grid]}

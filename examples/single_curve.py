@@ -51,8 +51,9 @@ ACCURACY = "draft" if FAST else "default"
 # reads off the approach and the retraction under δ̄o control, each jump landing where energy
 # descent takes it. With `error_estimate=True` (the default) the same curve is also solved with
 # surface elements half as long, on the second core, and twice the change of every event is
-# reported as its error estimate (`relative_error_estimate`: the same relative to the event). `unstable_branch=True` also traces the unstable parts of the S-shaped
-# equilibrium curve between the folds (for the plot; it roughly doubles the cost).
+# reported as its error estimate (`relative_error_estimate`: the same relative to the event).
+# `unstable_branch=True` also traces the unstable parts of the S-shaped equilibrium curve between
+# the folds (for the plot; it roughly doubles the cost).
 
 result = solve_curve(MU, method=METHOD, accuracy=ACCURACY, unstable_branch=True)
 print(f"μ = {result.mu:g}, {result.method}, accuracy '{result.accuracy}': status {result.status}; "

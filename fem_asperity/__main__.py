@@ -4,6 +4,7 @@ laws: the paper's closed-form events; scales: E*, the Tabor parameter and the na
 from SI inputs; curve: approach and retraction solved by FE or boundary integral; sweep: many
 curves over mu in parallel (stored, resumable); onset: the smallest mu with a jump-in."""
 
+import json
 import sys
 
 from .closed_forms.laws import PAPER_LAWS
@@ -64,7 +65,7 @@ def build_parser():
     curve.add_argument("--nu", type=float, default=0.3, help="substrate Poisson's ratio (0.3)")
     curve.add_argument("--layer-nu", type=float, help="layer Poisson's ratio (default: --nu)")
     curve.add_argument("--no-error-estimate", action="store_true",
-                       help="skip the second, coarser solve (no error estimate; faster)")
+                       help="skip the second, finer solve (no error estimate; faster)")
     curve.add_argument("--unstable-branch", action="store_true",
                        help="also trace the unstable branches (the whole S-shaped curve in "
                             "equilibrium.csv and curve.png; slower: LU factorisations and short "
@@ -84,7 +85,7 @@ def build_parser():
     sweep.add_argument("--accuracy", choices=tuple(PRESETS), default="default",
                        help="resolution of each curve (default: %(default)s)")
     sweep.add_argument("--no-error-estimate", action="store_true",
-                       help="skip each curve's second, coarser solve")
+                       help="skip each curve's second, finer solve (no error estimate)")
     sweep.add_argument("--jobs", type=int, help="worker processes (default: one per core)")
     sweep.add_argument("--scheduler", metavar="ADDRESS",
                        help="run on the Dask cluster of this scheduler (tcp://host:8786) "
@@ -178,10 +179,13 @@ def _curve(args, parser):
     else:
         estimates = ("error_estimate", "relative_error_estimate")
         absolute, relative = (row[key] or {} for key in estimates)
+        provenance = ("inputs", "version", "solver_revision")
         print_table([{"quantity": k, "value": v, "error_estimate": absolute.get(k),
                       "relative": relative.get(k)}
-                     for k, v in row.items() if k not in estimates],
+                     for k, v in row.items() if k not in estimates + provenance],
                     ("quantity", "value", "error_estimate", "relative"))
+        print(f"version {row['version']}, solver revision {row['solver_revision']}; inputs "
+              f"{json.dumps(row['inputs'])}")
     return 0
 
 

@@ -124,6 +124,15 @@ def test_energy_descent_lands_where_newton_on_the_traced_branch_does():
         assert surface.force(w, jump.delta) == pytest.approx(jump.p_after, rel=1e-8)
 
 
+def test_a_refined_curve_gets_its_estimate_from_its_own_finer_solve():
+    """At μ = 0.7 the BEM `default` misses the jump and is refined once; its error estimate
+    then comes from a solve twice as fine as the refined one, and has the jump-in."""
+    result = solve_curve(0.7, method="bem")
+    assert result.accuracy == "default/2" and result.status == "ok"
+    assert result.error_estimate["delta_jump_in"] is not None
+    assert result.error_estimate["p_off"] < 1e-5
+
+
 def test_a_curve_above_the_onset_that_misses_its_jump_is_refined_until_it_jumps():
     """At mu = 0.7 (onset 0.697) the BEM `default` grid misses the shallow fold; the solve
     notices (mu above the onset, no jump-in) and refines once."""
@@ -156,11 +165,15 @@ def test_a_failing_error_estimate_never_costs_the_result(monkeypatch):
     assert "InputError" in result.message and result.events.jump_in is not None
 
 
-@pytest.mark.parametrize("mu", [2.5, 3.0, pytest.param(5.0, marks=pytest.mark.slow)])
-def test_presets_do_not_ripple(mu):
-    """Every preset stays below the ripple-free element size RIPPLE_FREE μ⁻²: the BEM `draft`
-    rippled at these μ (3, 6 and 22 folds) before its elements were capped there."""
-    result = solve_curve(mu, method="bem", accuracy="draft", error_estimate=False)
+@pytest.mark.parametrize("mu, method", [
+    (2.5, "bem"), (3.0, "bem"), pytest.param(5.0, "bem", marks=pytest.mark.slow),
+    pytest.param(10.0, "bem", marks=pytest.mark.slow),
+    pytest.param(5.0, "fem", marks=pytest.mark.slow)])
+def test_presets_do_not_ripple(mu, method):
+    """`draft`, the coarsest preset, stays below the ripple-free element size RIPPLE_FREE μ⁻²:
+    before its elements were capped there it rippled at these μ (BEM: 3, 6, 22 folds; the
+    edge-following BEM at μ = 10: 5; the FE at μ = 5: 6)."""
+    result = solve_curve(mu, method=method, accuracy="draft", error_estimate=False)
     assert result.folds == 2 and result.status == "ok" and result.accuracy == "draft"
 
 
@@ -171,8 +184,7 @@ def test_a_rippling_curve_is_refined_and_reports_the_physical_jumps():
     from fem_asperity.solver.solve import _solve_refining
 
     mu = 3.0
-    disc = replace(discretisation(mu, "draft", method="bem"), h_surface=0.25 * mu**-1.5,
-                   h_ripple=np.inf)
+    disc = replace(discretisation(mu, "draft", method="bem"), h_surface=0.25 * mu**-1.5)
     rippled = solve_discretised(mu, disc)
     assert rippled.ripples and rippled.status == "ripples"
     result, solved_on = _solve_refining(mu, disc, solid=Solid(), radius_ratio=None,
@@ -197,13 +209,15 @@ def test_error_estimate_bounds_the_error_without_overstating_it():
         assert result.relative_error_estimate[key] == pytest.approx(estimate / abs(a[key]))
 
 
-@pytest.mark.parametrize("mu", [3.0, 7.0])
-def test_progress_rises_to_one_at_the_end_only(mu):
-    """The progress never falls and reaches 1 only with the last report, on a uniform grid (μ = 3)
-    and on grids that follow the edge (μ = 7, where it fell with each regrid of the retraction
-    and stayed near 0.85 while the peel traced most of its points)."""
+@pytest.mark.parametrize("mu, estimate", [(3.0, False), (7.0, False), (3.0, True)])
+def test_progress_rises_to_one_at_the_end_only(mu, estimate):
+    """The progress never falls and reaches 1 only with the last report: on a uniform grid
+    (μ = 3), on grids that follow the edge (μ = 7, where it fell with each regrid of the
+    retraction and stayed near 0.85 while the peel traced most of its points), and with the
+    error estimate's longer solve alongside (the bar showed 1 when the shorter one ended)."""
     seen = []
-    solve_curve(mu, method="bem", accuracy="draft", error_estimate=False, progress=seen.append)
+    solve_curve(mu, method="bem", accuracy="draft", error_estimate=estimate,
+                progress=seen.append)
     assert all(b >= a for a, b in zip(seen, seen[1:]))
     assert seen[-1] == 1.0 and max(seen[:-1]) < 1.0
     assert max(seen[:-1]) > 0.9  # the retraction moves the bar on before the end

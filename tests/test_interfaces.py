@@ -1,5 +1,5 @@
 """The explicit interfaces: both solids are `ElasticSurface`s, both grid kinds `Grids`, and each
-method has its own discretisation type whose coarsening and refinement touch its own fields."""
+method has its own discretisation type whose refinements touch its own fields."""
 
 import pytest
 
@@ -38,7 +38,7 @@ def test_each_discretisation_builds_grids_of_the_grids_interface(mu, method, kin
     (2.0, "bem", None, BEMDiscretisation, "growth"),
     (2.0, "bem", True, EdgeDiscretisation, "growth"),
 ])
-def test_coarsening_and_refinement_keep_the_type_and_scale_its_lengths(mu, method, track, kind,
+def test_refinements_keep_the_type_and_scale_its_lengths(mu, method, track, kind,
                                                                       grading):
     fine = discretisation(mu, "default", method=method, track_edge=track)
     partner, finer = fine.for_estimate(), fine.refined()

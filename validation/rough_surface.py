@@ -205,7 +205,7 @@ def section(summary):
     lines += ["", "### Paper's law against the solved law (checked against the BEM/FE)", "",
               "F̄ and S̄ from the paper's closed forms and from the approach curve of the "
               "boundary-integral solver at the same μ (`law_comparison.png`, σ = 2 nm). "
-              "The BEM agrees with the FE within the FE's error estimate (tests).", "",
+              "The BEM agrees with the FE within the sum of their error estimates (tests).", "",
               "| μ | σ [nm] | F̄max paper | F̄max refit | F̄max solved | max abs(ΔF̄) where "
               "adhesive | at d̃ | max abs(ΔS̄)/max S̄ | at d̃ | interpolation error |",
               "|---|---|---|---|---|---|---|---|---|---|"]

@@ -25,9 +25,6 @@ PRESETS = {
     "default": (1.0, 0.1),
     "fine": (0.5, 0.05),
 }
-#: Largest turn limit (rad), 0.2: at 0.4 the BEM at μ = 3 (h = 0.1) stepped off the curve. Not
-#: pinned by a test.
-MAX_TURN = 0.2
 #: FE surface element length of `default`: min(H_MAX, H_COHESIVE · μ^(−3/2)), in √(Rε) (surface
 #: edges come out between ⅔ of it and all of it, `solids.mesh.graded_mesh`).
 #: H_MAX = 1/16: at 1/10 the FE separations at μ = 1 move by more than the error estimate says;
@@ -92,9 +89,8 @@ ESTIMATE_GRADING = 2.0
 
 class _Resolution:
     """What the three discretisations share: a preset `name`, the surface element length
-    `h_surface` and the ripple-free limit `h_ripple` (√(Rε)), the continuation's `trace`
-    settings, and coarsening and refinement. Each subclass names its grading field in `_GRADING`
-    and its other lengths in `_LENGTHS`."""
+    `h_surface` (√(Rε)), the continuation's `trace` settings, and refinement. Each subclass
+    names its grading field in `_GRADING` and its other lengths in `_LENGTHS`."""
 
     _GRADING = "grading"
     _LENGTHS = ()
@@ -110,13 +106,11 @@ class _Resolution:
         return FixedGrid(self.elastic(solid), mu, radius_ratio=radius_ratio)
 
     def refined(self):
-        """The next level of a tolerance-driven solve, or after a curve rippled: surface
-        elements and turn limit halved (the grading kept: the FE's puts a disc's deflection 7e-6
-        off); the ripple-free limit RIPPLE_MARGIN below the old elements, which may have
-        rippled."""
-        return replace(self._scaled(f"{self.name}/2", 0.5, getattr(self, self._GRADING),
-                                    0.5 * self.trace.turn),
-                       h_ripple=min(self.h_ripple, self.h_surface / RIPPLE_MARGIN))
+        """The next level of a tolerance-driven solve, or of a curve that rippled or missed its
+        jump: surface elements and turn limit halved (the grading kept: the FE's puts a disc's
+        deflection 7e-6 off)."""
+        return self._scaled(f"{self.name}/2", 0.5, getattr(self, self._GRADING),
+                            0.5 * self.trace.turn)
 
     def for_estimate(self):
         """The discretisation of the error estimate: `refined()`, and the bulk (FE) or tail
@@ -134,7 +128,6 @@ class FEDiscretisation(_Resolution):
     name: str
     h_surface: float
     r_fine: float
-    h_ripple: float = np.inf
     size: float = DOMAIN_SIZE
     grading: float = FE_GRADING
     order: int = 2
@@ -156,7 +149,6 @@ class BEMDiscretisation(_Resolution):
     name: str
     h_surface: float
     r_fine: float
-    h_ripple: float = np.inf
     r_max: float = TRACTION_RADIUS
     growth: float = BEM_GROWTH
     trace: TraceSettings = TraceSettings()
@@ -181,7 +173,6 @@ class EdgeDiscretisation(_Resolution):
     h_surface: float
     band: float
     h_contact: float
-    h_ripple: float = np.inf
     r_contact: float = R_FINE_MIN
     h_inside: float = H_INSIDE
     r_max: float = TRACTION_RADIUS
@@ -209,11 +200,21 @@ def jkr_radius(load, mu):
     return ((1.5 * np.pi) * mu**1.5 * (load + 1.5 + np.sqrt(3.0 * load + 2.25))) ** (1.0 / 3.0)
 
 
+def sizing_mu(mu, solid=Solid()):
+    """The Tabor parameter a discretisation is sized for: the substrate's `mu`, or, under a
+    layer more compliant than the substrate, the layer's, μ · (E*_layer/E*_substrate)^(−2/3) (μ
+    grows like E*^(−2/3)): its cohesive zone is the narrower. (For a thin layer that the contact
+    hardly feels this is finer than needed.)"""
+    if solid.layer_thickness is None or solid.layer_modulus_ratio >= 1.0:
+        return mu
+    return mu * solid.layer_modulus_ratio ** (-2.0 / 3.0)
+
+
 def discretisation(mu, accuracy="default", *, p_end=1.0, method="fem", track_edge=None):
     """The discretisation (`FEDiscretisation`, `BEMDiscretisation` or `EdgeDiscretisation`) for
-    Tabor parameter `mu`, a preset name (draft, default, fine) and a method ('fem' or 'bem').
-    track_edge (BEM only): grids that follow the contact edge (True), one uniform grid (False),
-    or the first from μ = MU_TRACKING on (None)."""
+    Tabor parameter `mu` (of the most compliant material: `sizing_mu`), a preset name (draft,
+    default, fine) and a method ('fem' or 'bem'). track_edge (BEM only): grids that follow the
+    contact edge (True), one uniform grid (False), or the first from μ = MU_TRACKING on (None)."""
     mu = positive("mu", mu)
     if track_edge and method != "bem":
         raise InputError(f"track_edge needs method 'bem'; got method {method!r}")
@@ -232,13 +233,13 @@ def discretisation(mu, accuracy="default", *, p_end=1.0, method="fem", track_edg
 
     if method == "fem":
         return FEDiscretisation(name=accuracy, h_surface=h(H_MAX, H_COHESIVE), r_fine=r_fine,
-                                h_ripple=h_ripple, size=max(DOMAIN_SIZE, 100.0 * r_fine),
+                                size=max(DOMAIN_SIZE, 100.0 * r_fine),
                                 trace=trace)
     if edge:
         band = BAND_COHESIVE * mu**-1.5
         return EdgeDiscretisation(
             name=accuracy, h_surface=h(H_MAX_BEM, H_COHESIVE_TRACKING), band=band,
-            h_contact=factor * H_MAX_BEM, h_ripple=h_ripple,
+            h_contact=factor * H_MAX_BEM,
             trace=replace(trace, da=min(trace.da, 0.5 * band), front=band))
     return BEMDiscretisation(name=accuracy, h_surface=h(H_MAX_BEM, H_COHESIVE_BEM),
-                             r_fine=r_fine, h_ripple=h_ripple, trace=trace)
+                             r_fine=r_fine, trace=trace)

@@ -9,6 +9,7 @@ exact extrema of P̄; approach and retraction under δ̄o control read off it, j
 `path.branches`, `path.whole_curve`). The error estimate is twice the change of each event on
 a finer discretisation (`for_estimate()` of the `solver.presets` discretisation, `_estimate`)."""
 
+import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import replace
@@ -23,7 +24,7 @@ from ..path.whole_curve import whole_curve_paths
 from ..plumbing.checks import in_range, positive
 from ..plumbing.errors import ContinuationError, InputError
 from ..solids.fe import Solid
-from .presets import discretisation
+from .presets import discretisation, sizing_mu
 from .result import PHYSICAL_FOLDS, CurveResult, Model, worst_status
 
 #: BLAS threads while a curve is set up and traced, 1: its dense factorisations (n ≈ 100-3000)
@@ -43,6 +44,8 @@ MU_ONSET_HI, REFINEMENTS = 0.6982, 2
 #: pins the lower end.
 MU_RANGE = (1e-3, 1e4)
 
+#: Progress shown until a solve and its estimate's solve have both ended.
+ALMOST_DONE = 0.99
 #: Event keys compared between the two meshes of the error estimate.
 ESTIMATED = ("p_max", "delta_oc", "a_c", "delta_o_star", "x_oc", "delta_jump_in", "p_jump_after",
              "p_off", "delta_jump_out")
@@ -66,6 +69,9 @@ def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, unstable_br
         approach, retraction, jumps_in, jumps_out, curve, traced = solved
     folds = int(curve.branch.max()) if unstable_branch else len(jumps_in) + len(jumps_out)
     message = f"{folds} folds of the equilibrium curve" + grids.summary()
+    if sizing_mu(mu, solid) != mu:
+        message += (f"; elements sized for the layer's Tabor parameter "
+                    f"{sizing_mu(mu, solid):.4g}, the more compliant material")
     status = "ok"
     if folds > PHYSICAL_FOLDS:
         status = "ripples"
@@ -123,10 +129,12 @@ def _solve_refining(mu, disc, *, progress=None, **options):
             note = (f"; at '{disc.name}' {why}: solved again on a discretisation refined "
                     f"{level} time(s)")
             return replace(result, message=result.message + note, wall_s=wall), solved_on
-    why = ("still ripples" if flaw(result) == "ripples"
-           else "no jump-in although mu is above the onset")
-    note = (f"; {why} after {REFINEMENTS} refinements: the jump-in is the first fold of the "
-            f"approach and the jump-out the last of the retraction; try --tolerance")
+    if flaw(result) == "ripples":
+        note = (f"; still ripples after {REFINEMENTS} refinements: the jump-in is the first fold "
+                f"of the approach and the jump-out the last of the retraction; try --tolerance")
+    else:
+        note = (f"; no jump-in although mu is above the onset, also refined {REFINEMENTS} "
+                f"times: try --tolerance or a finer accuracy")
     return replace(result, status=worst_status(result.status, flaw(result)),
                    message=result.message + note, wall_s=wall), solved_on
 
@@ -134,14 +142,27 @@ def _solve_refining(mu, disc, *, progress=None, **options):
 def _estimate(result, disc, partner, partner_disc):
     """Error estimate of `result` (solved on `disc`) from `partner` (on `partner_disc`, surface
     elements r times as long): |difference| / |r − 1| per ESTIMATED key, None where the event
-    is missing in either. Against a finer partner (r = 1/2) that is twice the difference: the
-    error of first-order convergence, which bounds faster convergence too (at order p the
-    difference is the fraction 1 − 2^(−p) of the error), overstating it by at most 2.
+    is missing in either (`_one_sided` names those found by one of the two only).
+
+    Against a finer partner (r = 1/2) that is twice the difference: the error of first-order
+    convergence, which bounds faster convergence too (at order p the difference is the
+    fraction 1 − 2^(−p) of the error), overstating it by at most 2 in the asymptotic range.
     Against a coarser one (r = 2, `solve_to_tolerance`) it is the difference itself."""
     a, b = result.events.records(), partner.events.records()
     scale = 1.0 / abs(partner_disc.h_surface / disc.h_surface - 1.0)
     return {k: (scale * abs(a[k] - b[k]) if a[k] is not None and b[k] is not None else None)
             for k in ESTIMATED}
+
+
+def _one_sided(result, partner):
+    """A message naming the estimated events that one of the two solves has and the other not
+    (a jump one discretisation finds and the other misses): their estimate is None."""
+    a, b = result.events.records(), partner.events.records()
+    keys = [k for k in ESTIMATED if (a[k] is None) != (b[k] is None)]
+    if not keys:
+        return ""
+    return (f"; {', '.join(keys)} found by only one of the solve and its finer estimate solve "
+            f"(no estimate for them): try a finer accuracy")
 
 
 def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_ratio=None,
@@ -160,8 +181,8 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     error_estimate: also solve on the discretisation of the estimate (`for_estimate()`: surface
         elements and turn limit halved, the bulk graded more gently) and report per event twice
         the difference (`_estimate`). That solve runs alongside on the second core; the
-        wall time is about that of the finer solve. If it fails, the estimate is None and
-        `status` and `message` say why; the result is kept.
+        wall time is about that of the finer solve. If it fails or ripples, the estimate is
+        None and `status` and `message` say why; the result is kept.
     A curve that ripples, or misses a jump it must have, is solved again on refined
     discretisations (up to REFINEMENTS times); one that still does carries that `status`.
     progress: callable(fraction in [0, 1]) for a progress bar.
@@ -171,31 +192,53 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     positive("p_end", p_end)
     if radius_ratio is not None:
         in_range("radius_ratio", radius_ratio, 10.0, np.inf, closed_lo=True)
-    disc = discretisation(mu, accuracy, p_end=p_end, method=method)
+    disc = discretisation(sizing_mu(mu, solid), accuracy, p_end=p_end, method=method)
     options = dict(solid=solid, radius_ratio=radius_ratio, unstable_branch=unstable_branch)
     if not error_estimate:
         return _solve_refining(mu, disc, progress=progress, **options)[0]
     start = time.perf_counter()
     # The estimate's solve runs in a second thread: the dense factorisations release the GIL,
-    # so the two curves share the two cores (one BLAS thread each).
+    # so the two curves share the two cores (one BLAS thread each). The bar shows the slower.
+    report_main, report_finer = _both(progress)
     with threadpool_limits(PATH_BLAS_THREADS, user_api="blas"), ThreadPoolExecutor(1) as pool:
-        finer_job = pool.submit(solve_discretised, mu, disc.for_estimate(), **options)
-        result, solved_on = _solve_refining(mu, disc, progress=progress, **options)
+        finer_job = pool.submit(solve_discretised, mu, disc.for_estimate(), progress=report_finer,
+                                **options)
+        result, solved_on = _solve_refining(mu, disc, progress=report_main, **options)
         try:
+            partner_on = solved_on.for_estimate()
             if solved_on is disc:
                 partner = finer_job.result()
             else:  # refined for ripple or a missed jump: its own partner
-                partner = solve_discretised(mu, solved_on.for_estimate(), **options)
+                partner = solve_discretised(mu, partner_on, **options)
             if partner.ripples:
-                raise ContinuationError(f"its solve has {partner.folds} folds")
-            estimate = _estimate(result, solved_on, partner, solved_on.for_estimate())
-            note, status = "", result.status
+                raise ContinuationError(f"it ripples ({partner.folds} folds)")
+            estimate = _estimate(result, solved_on, partner, partner_on)
+            note, status = _one_sided(result, partner), result.status
         except Exception as exc:  # the estimate never costs the result: whatever stopped it
             estimate, note = None, (f"; no error estimate: its finer solve failed "
                                     f"({type(exc).__name__}: {exc})")
             status = worst_status(result.status, "no_estimate")
+    if progress:
+        progress(1.0)
     return replace(result, error_estimate=estimate, status=status, message=result.message + note,
                    wall_s=time.perf_counter() - start)
+
+
+def _both(progress):
+    """Two progress callbacks, for the solve and its estimate's solve running alongside, that
+    show the lesser of their fractions, below 1 (`solve_curve` shows 1 when both have ended)."""
+    if progress is None:
+        return None, None
+    fractions, lock = [0.0, 0.0], threading.Lock()
+
+    def reporter(i):
+        def report(fraction):
+            with lock:
+                fractions[i] = fraction
+                progress(min(min(fractions), ALMOST_DONE))
+        return report
+
+    return reporter(0), reporter(1)
 
 
 def _mu(mu):
@@ -218,7 +261,7 @@ def solve_to_tolerance(mu, tolerance, *, method="fem", solid=Solid(), radius_rat
     is returned with a message saying so. Arguments otherwise as `solve_curve`."""
     mu = _mu(mu)
     tolerance = in_range("tolerance", tolerance, 0.0, 0.1)
-    disc = discretisation(mu, "draft", p_end=p_end, method=method)
+    disc = discretisation(sizing_mu(mu, solid), "draft", p_end=p_end, method=method)
 
     def level(k, d):
         report = (lambda f: progress((k + f) / max_levels)) if progress else None
