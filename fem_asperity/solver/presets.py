@@ -18,8 +18,9 @@ from ..solids.bem import BoussinesqSurface, radial_grid
 from ..solids.fe import HalfSpace, Solid
 from ..solids.mesh import graded_mesh
 
-#: Surface element size relative to the `default` preset, and the continuation's turn limit; the
-#: three converge in turn: test_fem_curve.py::test_pull_off_converges_under_refinement (slow).
+#: Surface element size relative to the `default` preset (below the ripple cap, which can make
+#: presets alike at large μ: `discretisation`), and the continuation's turn limit; the three
+#: converge in turn: test_fem_curve.py::test_pull_off_converges_under_refinement (slow).
 PRESETS = {
     "draft": (2.0, 0.2),
     "default": (1.0, 0.1),
@@ -27,8 +28,9 @@ PRESETS = {
 }
 #: FE surface element length of `default`: min(H_MAX, H_COHESIVE · μ^(−3/2)), in √(Rε) (surface
 #: edges come out between ⅔ of it and all of it, `solids.mesh.graded_mesh`).
-#: H_MAX = 1/16: at 1/10 the FE separations at μ = 1 move by more than the error estimate says;
-#: test_bem_curve.py::test_bem_agrees_with_fem_within_the_error_estimates.
+#: H_MAX = 1/16: at 1/10 the FE separations at μ = 1 moved by more than the error estimate (then
+#: from a coarser solve) said; test_bem_curve.py::test_bem_agrees_with_fem_within_the_error_
+#: estimates.
 #: H_COHESIVE = 0.2: at 0.25 the P2 surface ripples at μ = 5. Not pinned by a test.
 H_MAX, H_COHESIVE = 0.0625, 0.2
 #: BEM element length of `default` at large μ, H_COHESIVE_BEM · μ^(−3/2) with 0.125: no ripple
@@ -46,8 +48,9 @@ DOMAIN_SIZE = 1e3
 #: force of about (16/3) r⁻⁴ ≈ 5e-8 (the solid itself is not truncated). Not pinned by a test.
 TRACTION_RADIUS = 100.0
 #: FE bulk grading (element size growth per unit distance from the surface strip), 0.2: at 0.3
-#: the error estimate missed the force after the jump-in at μ = 3, at 0.2 it bounds every event;
-#: test_bem_curve.py::test_bem_agrees_with_fem_within_the_error_estimates (μ = 3 is slow).
+#: the error estimate (then from a coarser solve) missed the force after the jump-in at μ = 3,
+#: at 0.2 it bounded every event; test_bem_curve.py::test_bem_agrees_with_fem_within_the_error_
+#: estimates (μ = 3 is slow).
 FE_GRADING = 0.2
 #: From MU_TRACKING = 6 on the boundary-integral grids follow the contact edge (`path.grids`),
 #: where a uniform grid fine enough for the edge (n ∝ μ² nodes) outgrows the grids' overhead: fine
