@@ -6,10 +6,12 @@ curves over mu in parallel (stored, resumable); onset: the smallest mu with a ju
 
 import json
 import sys
+import warnings
 
 from .closed_forms.laws import PAPER_LAWS
 from .closed_forms.scales import Scales, effective_modulus
 from .plumbing.cli import Parser, ProgressBar, dump_json, print_table, run
+from .plumbing.errors import DerjaguinWarning
 from .plumbing.files import writable_folder
 from .solver.presets import METHODS, PRESETS
 
@@ -49,7 +51,19 @@ def build_parser():
     scales.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
     curve = commands.add_parser("curve", help="approach + retraction: events and curves")
-    curve.add_argument("--mu", type=float, required=True, help="Tabor parameter (substrate E*)")
+    curve.add_argument("--mu", type=float,
+                       help="Tabor parameter (substrate E*); or the physical inputs below")
+    curve.add_argument("--E-star", dest="E_star", type=float,
+                       help="effective modulus [Pa] (or --E1 --nu1 [--E2 --nu2])")
+    curve.add_argument("--E1", type=float, help="modulus of the half-space [Pa]")
+    curve.add_argument("--nu1", type=float, help="Poisson's ratio of the half-space")
+    curve.add_argument("--E2", type=float, help="modulus of the sphere [Pa] (omit: rigid)")
+    curve.add_argument("--nu2", type=float, help="Poisson's ratio of the sphere")
+    _physical_arguments(curve)
+    curve.add_argument("--profile", choices=("sphere", "derjaguin"),
+                       help="the sphere's exact gap, or Derjaguin's parabola (the paper's; "
+                            "results then depend on mu alone). Default with physical inputs: "
+                            "sphere; with --mu: derjaguin (no R/eps)")
     curve.add_argument("--method", choices=METHODS, default="fem",
                        help="fem: finite elements (layers allowed); bem: boundary integral of the "
                             "homogeneous half-space, faster (default: %(default)s)")
@@ -62,7 +76,8 @@ def build_parser():
                        help="layer thickness t / sqrt(R eps) (omit: homogeneous half-space)")
     curve.add_argument("--layer-modulus-ratio", type=float, default=1.0,
                        help="E*_layer / E*_substrate (default: 1)")
-    curve.add_argument("--nu", type=float, default=0.3, help="substrate Poisson's ratio (0.3)")
+    curve.add_argument("--nu", type=float,
+                       help="substrate Poisson's ratio (default: --nu1, else 0.3)")
     curve.add_argument("--layer-nu", type=float, help="layer Poisson's ratio (default: --nu)")
     curve.add_argument("--no-error-estimate", action="store_true",
                        help="skip the second, finer solve (no error estimate; faster)")
@@ -147,23 +162,26 @@ def _curve(args, parser):
     from .solver.output import write_all
     from .solver.solve import solve_curve, solve_to_tolerance
 
+    mu, scales, radius_ratio = _curve_inputs(args, parser)
     if args.out is not None:
         writable_folder(args.out, "--out")  # before solving
     if args.layer_thickness is None and (args.layer_modulus_ratio != 1.0
                                          or args.layer_nu is not None):
         parser.error("curve: --layer-modulus-ratio and --layer-nu need --layer-thickness")
-    solid = Solid(nu=args.nu, layer_thickness=args.layer_thickness,
+    nu = next(v for v in (args.nu, args.nu1, 0.3) if v is not None)
+    solid = Solid(nu=nu, layer_thickness=args.layer_thickness,
                   layer_modulus_ratio=args.layer_modulus_ratio,
-                  layer_nu=args.nu if args.layer_nu is None else args.layer_nu)
-    bar = ProgressBar(f"{args.method.upper()} curve mu={args.mu:g}")
+                  layer_nu=nu if args.layer_nu is None else args.layer_nu)
+    bar = ProgressBar(f"{args.method.upper()} curve mu={mu:g}")
     try:
         if args.tolerance is not None:
-            result = solve_to_tolerance(args.mu, args.tolerance, method=args.method,
-                                        solid=solid, unstable_branch=args.unstable_branch,
-                                        progress=bar)
+            result = solve_to_tolerance(mu, args.tolerance, method=args.method, solid=solid,
+                                        radius_ratio=radius_ratio,
+                                        unstable_branch=args.unstable_branch, progress=bar)
         else:
-            result = solve_curve(args.mu, method=args.method, accuracy=args.accuracy,
-                                 solid=solid, error_estimate=not args.no_error_estimate,
+            result = solve_curve(mu, method=args.method, accuracy=args.accuracy, solid=solid,
+                                 radius_ratio=radius_ratio,
+                                 error_estimate=not args.no_error_estimate,
                                  unstable_branch=args.unstable_branch, progress=bar)
     except ContinuationError as exc:
         print(f"{PROG}: continuation failed: {exc}", file=sys.stderr)
@@ -174,19 +192,68 @@ def _curve(args, parser):
     if args.out:
         write_all(result, args.out)
     row = result.records()
+    if scales is not None:
+        row["si"] = {**scales.to_si(row), "error_estimate": scales.to_si(
+            row["error_estimate"] or {}), "scales": _scale_row(scales)}
     if args.json:
         dump_json(row)
     else:
         estimates = ("error_estimate", "relative_error_estimate")
         absolute, relative = (row[key] or {} for key in estimates)
-        provenance = ("inputs", "version", "solver_revision")
+        provenance = ("inputs", "version", "solver_revision", "si")
+        si = row.get("si", {})
         print_table([{"quantity": k, "value": v, "error_estimate": absolute.get(k),
-                      "relative": relative.get(k)}
+                      "relative": relative.get(k), "SI": _si_text(k, si.get(k))}
                      for k, v in row.items() if k not in estimates + provenance],
-                    ("quantity", "value", "error_estimate", "relative"))
+                    ("quantity", "value", "error_estimate", "relative")
+                    + (("SI",) if si else ()))
         print(f"version {row['version']}, solver revision {row['solver_revision']}; inputs "
               f"{json.dumps(row['inputs'])}")
     return 0
+
+
+def _curve_inputs(args, parser):
+    """(μ, `Scales` or None, R/ε of the exact sphere or None) of `curve`: --mu, or the physical
+    inputs (E* or the two bodies' E and ν, Δγ, ε, R), never both."""
+    bodies = (args.E1, args.nu1, args.E2, args.nu2)
+    physical = (args.E_star, *bodies, args.dgamma, args.eps, args.R)
+    if (args.mu is None) == all(v is None for v in physical):
+        parser.error("curve: give either --mu or the physical inputs (--E-star or --E1 --nu1 "
+                     "[--E2 --nu2], and --dgamma, --eps, --R)")
+    if args.mu is not None:
+        if args.profile == "sphere":
+            parser.error("curve: --profile sphere needs R/eps: give the physical inputs "
+                         "instead of --mu")
+        return args.mu, None, None
+    if (args.E_star is None) == (args.E1 is None):
+        parser.error("curve: give --E-star or --E1 --nu1 [--E2 --nu2], one of the two")
+    if None in (args.dgamma, args.eps, args.R) or (args.E1 is not None and args.nu1 is None):
+        parser.error("curve: the physical inputs need --dgamma, --eps, --R and E* (--E-star, "
+                     "or --E1 with --nu1)")
+    if args.E_star is not None and any(v is not None for v in bodies):
+        parser.error("curve: --E-star and --E1/--nu1/--E2/--nu2 are alternatives")
+    E_star = args.E_star
+    if E_star is None:
+        E_star = effective_modulus(E1=args.E1, nu1=args.nu1, E2=args.E2, nu2=args.nu2)
+    sphere = args.profile != "derjaguin"
+    with warnings.catch_warnings():
+        if sphere:  # the Derjaguin warning is moot: the exact sphere is solved
+            warnings.simplefilter("ignore", DerjaguinWarning)
+        scales = Scales(E_star=E_star, dgamma=args.dgamma, eps=args.eps, R=args.R)
+    return scales.mu, scales, (scales.R / scales.eps if sphere else None)
+
+
+def _scale_row(scales):
+    """The scales of a physical curve, SI (and μ, R/ε)."""
+    return {"mu": scales.mu, "R_over_eps": scales.R / scales.eps, "E_star": scales.E_star,
+            "force": scales.force, "length_z": scales.length_z, "length_r": scales.length_r}
+
+
+def _si_text(key, value):
+    """An SI value with its unit for the table ('' where the key has none)."""
+    if value is None:
+        return ""
+    return f"{value:.6g} {'N' if key.startswith('p_') else 'm'}"
 
 
 def _sweep(args, parser):

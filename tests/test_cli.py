@@ -186,11 +186,46 @@ def test_curve_json_files_and_progress(tmp_path):
     ["curve", "--mu", "1e-300"], ["curve", "--mu", "1", "--layer-thickness", "1e-300"],
     ["curve", "--mu", "1", "--layer-thickness", "1", "--layer-modulus-ratio", "1e300"],
     ["onset", "--bracket", "0.3", "0.5"], ["onset", "--bracket", "1", "0.3"],
+    # physical inputs: both ways at once, one missing, alternatives mixed, out of range
+    ["curve", "--mu", "1", "--E-star", "1e11", "--dgamma", "0.05", "--eps", "3e-10", "--R",
+     "1e-6"],
+    ["curve", "--E-star", "1e11", "--dgamma", "0.05", "--R", "1e-6"],
+    ["curve", "--E-star", "1e11", "--E1", "1e11", "--nu1", "0.3", "--dgamma", "0.05", "--eps",
+     "3e-10", "--R", "1e-6"],
+    ["curve", "--E1", "1e11", "--dgamma", "0.05", "--eps", "3e-10", "--R", "1e-6"],
+    ["curve", "--E1", "1e11", "--nu1", "0.5", "--dgamma", "0.05", "--eps", "3e-10", "--R",
+     "1e-6"],
+    ["curve", "--E-star", "1e11", "--dgamma", "0.05", "--eps", "3e-10", "--R", "1e-9"],
+    ["curve", "--mu", "1", "--profile", "sphere"],
 ])
 def test_curve_bad_input_is_one_line_exit_2(args):
     done = cli("fem_asperity", *args)
     assert done.returncode == 2
     assert len(done.stderr.strip().splitlines()) == 1, done.stderr
+
+
+def test_curve_in_si_matches_the_scales_and_bradley():
+    """Physical inputs in, SI out: μ and R/ε from the inputs, each force the dimensionless one
+    times 2πRΔγ and each separation times ε; a stiff solid (μ ≈ 0.005) pulls off at Bradley's
+    force, −2πRΔγ, within 1e-3 (the elastic correction is 5e-4 at μ = 0.01 and falls like
+    μ^(3/2); the exact sphere at R/ε = 3e4 moves it by 6e-5)."""
+    R, dgamma, eps, E_star = 1e-5, 0.05, 3e-10, 1e14
+    done = cli("fem_asperity", "curve", "--E-star", str(E_star), "--dgamma", str(dgamma),
+               "--eps", str(eps), "--R", str(R), "--method", "bem", "--accuracy", "draft",
+               "--no-error-estimate", "--json")
+    assert done.returncode == 0, done.stderr
+    row = json.loads(done.stdout)
+    mu = (R * dgamma**2 / (E_star**2 * eps**3)) ** (1 / 3)
+    assert row["mu"] == pytest.approx(mu, rel=1e-12) and 0.004 < mu < 0.005
+    assert row["inputs"]["profile"] == "sphere"
+    assert row["inputs"]["radius_ratio"] == pytest.approx(R / eps, rel=1e-12)
+    force = 2 * 3.141592653589793 * R * dgamma
+    si = row["si"]
+    assert si["p_off"] == pytest.approx(row["p_off"] * force, rel=1e-12)
+    assert si["delta_oc"] == pytest.approx(row["delta_oc"] * eps, rel=1e-12)
+    assert si["a_c"] == pytest.approx(row["a_c"] * (R * eps) ** 0.5, rel=1e-12)
+    assert si["p_off"] == pytest.approx(-force, rel=1e-3)
+    assert si["scales"]["force"] == pytest.approx(force, rel=1e-12)
 
 
 @pytest.mark.parametrize("args, says", [
