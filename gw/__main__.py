@@ -29,10 +29,14 @@ def _common(parser):
     parser.add_argument("--sigma-r-eta", type=float, help="sigma R eta: omega from eq. 20")
     parser.add_argument("--sigma", type=float, help="rms roughness [m] (physical inputs)")
     parser.add_argument("--eps", type=float, help="LJ equilibrium spacing [m]")
-    parser.add_argument("--radius", type=float, help="asperity radius R [m]")
+    # The names of `python -m fem_asperity`; gw's earlier spellings stay as aliases.
+    parser.add_argument("--R", "--radius", dest="radius", type=float,
+                        help="asperity radius R [m] (alias --radius)")
     parser.add_argument("--density", type=float, help="asperity density eta [1/m^2]")
-    parser.add_argument("--estar", type=float, help="effective modulus E* [Pa]")
-    parser.add_argument("--work-of-adhesion", type=float, help="work of adhesion [J/m^2]")
+    parser.add_argument("--E-star", "--estar", dest="estar", type=float,
+                        help="effective modulus E* [Pa] (alias --estar)")
+    parser.add_argument("--dgamma", "--work-of-adhesion", dest="work_of_adhesion", type=float,
+                        help="work of adhesion [J/m^2] (alias --work-of-adhesion)")
     parser.add_argument("--law", choices=("paper", "refit", "fem", "bem"), default="paper",
                         help="paper: the paper's closed forms; refit: the same forms with the "
                              "constants refitted from BEM curves (stored); fem, bem: the approach "
@@ -62,8 +66,8 @@ def _inputs(args, parser):
     if any(v is not None for v in physical):
         dimensionless = (args.mu, args.zeta, args.omega, args.sigma_r_eta)
         if None in physical or any(v is not None for v in dimensionless):
-            parser.error("physical inputs need all of --sigma --eps --radius --density --estar "
-                         "--work-of-adhesion, and none of --mu --zeta --omega --sigma-r-eta "
+            parser.error("physical inputs need all of --sigma --eps --R --density --E-star "
+                         "--dgamma, and none of --mu --zeta --omega --sigma-r-eta "
                          "(they follow from the physical inputs: omega from eq. 20)")
         mu = Scales(E_star=args.estar, dgamma=args.work_of_adhesion, eps=args.eps,
                     R=args.radius).mu

@@ -206,3 +206,19 @@ def test_cli_bad_input_is_one_line_exit_2(args):
     done = gw_cli(*args)
     assert done.returncode == 2
     assert len(done.stderr.strip().splitlines()) == 1, done.stderr
+
+
+def test_physical_inputs_take_the_names_of_fem_asperity_and_the_old_ones(capsys):
+    """--E-star/--dgamma/--R (fem_asperity's names) and --estar/--work-of-adhesion/--radius (gw's
+    earlier ones) give the same answer."""
+    import json
+
+    from gw.__main__ import main
+
+    common = ["fmax", "--sigma", "2e-9", "--eps", "3e-10", "--density", "2e13", "--json"]
+    answers = []
+    for names in (("--E-star", "--dgamma", "--R"), ("--estar", "--work-of-adhesion", "--radius")):
+        pairs = zip(names, ("1e9", "0.05", "1e-6"))
+        assert main(common + [item for pair in pairs for item in pair]) == 0
+        answers.append(json.loads(capsys.readouterr().out))
+    assert answers[0] == answers[1] and answers[0]["f_max"] > 0
