@@ -4,12 +4,14 @@ fmax: the strength of adhesion F̄max and the separation d̃ where it occurs; cu
 F̄ and contact area S̄ against d̃. Inputs dimensionless (--mu, --zeta, --omega or --sigma-r-eta)
 or in SI; the asperity law is the paper's, refitted, or a solved FE/BEM curve (--law)."""
 
+import argparse
 import sys
 from functools import partial
 
 import numpy as np
 
 from fem_asperity.closed_forms.scales import Scales
+from fem_asperity.plumbing.checks import in_range
 from fem_asperity.plumbing.cli import Parser, ProgressBar, dump_json, print_table, run
 from fem_asperity.solver.presets import PRESETS
 from fem_asperity.studies.refit import stored_refit
@@ -20,6 +22,8 @@ from .surface import RoughSurface, omega_mccool
 from .tables import solved_law
 
 PROG = "python -m gw"
+#: --compare warns where the paper's law is off the solved law by more than this fraction of F̄max.
+COMPARE_WARNING = 0.1
 
 
 def _common(parser):
@@ -50,7 +54,15 @@ def _common(parser):
 def build_parser():
     parser = Parser(prog=PROG, description=__doc__)
     commands = parser.add_subparsers(dest="command", required=True)
-    _common(commands.add_parser("fmax", help="strength of adhesion F_max and its separation"))
+    fmax = commands.add_parser("fmax", help="strength of adhesion F_max and its separation")
+    _common(fmax)
+    fmax.add_argument("--compare", action="store_true",
+                      help="the paper's law, the refitted law and the solved law (of --law fem "
+                           "or bem; default bem) side by side, with their relative differences "
+                           "and the solved law's interpolation error")
+    fmax.add_argument("--warn-above", type=float, default=COMPARE_WARNING,
+                      help="--compare warns where the paper's F_max is off the solved law's by "
+                           "more than this fraction (default: %(default)s)")
     curve = commands.add_parser("curve", help="F and S against the mean separation d / sigma")
     _common(curve)
     curve.add_argument("--d", type=float, nargs=2, metavar=("MIN", "MAX"),
@@ -94,15 +106,66 @@ def _law(args, mu):
     return law
 
 
+def _pressure_scale(args):
+    """2πRΔγη [Pa]: F̄ = F/(2πR A₀ Δγ η), so the force per nominal area A₀ is F̄ times this."""
+    return 2.0 * np.pi * args.radius * args.work_of_adhesion * args.density
+
+
+def _compare(args, parser, mu, surface):
+    """`fmax --compare`: F̄max and its d̃ from the paper's law, the refitted law and the solved law,
+    their differences relative to the solved one, and a warning where the paper's is off by more
+    than --warn-above."""
+    if args.law == "refit":
+        parser.error("fmax --compare: --law chooses the solved law's method (fem or bem)")
+    threshold = in_range("--warn-above", args.warn_above, 0.0, np.inf)
+    method = args.law if args.law in ("fem", "bem") else "bem"
+    laws = {"paper": PaperLaw(mu),
+            "refit": _law(_with_law(args, "refit"), mu),
+            "solved": _law(_with_law(args, method), mu)}
+    found = {name: strength(law, surface) for name, law in laws.items()}
+    solved = found["solved"].f_max
+    rows = {name: {"f_max": s.f_max, "d_at_max": s.d_at_max,
+                   "relative_to_solved": (s.f_max - solved) / solved}
+            for name, s in found.items()}
+    rows["solved"]["interpolation_error"] = laws["solved"].interpolation_error
+    rows["solved"]["method"] = method
+    off = rows["paper"]["relative_to_solved"]
+    warning = (f"the paper's law puts F_max {off:+.1%} off the solved {method.upper()} law (more "
+               f"than {threshold:.0%})" if abs(off) > threshold else None)
+    out = {"mu": mu, "zeta": surface.zeta, "omega": surface.omega, **rows, "warning": warning}
+    if args.json:
+        dump_json(out)
+    else:
+        print_table([{"law": name, "interpolation_error": None,
+                      **{k: v for k, v in row.items() if k != "method"}}
+                     for name, row in rows.items()],
+                    ("law", "f_max", "d_at_max", "relative_to_solved", "interpolation_error"))
+    if warning:
+        print(f"warning: {warning}", file=sys.stderr)
+    return 0
+
+
+def _with_law(args, law):
+    """`args` with --law replaced."""
+    return argparse.Namespace(**{**vars(args), "law": law})
+
+
 def main(argv=None):
     parser = build_parser()
     args = parser.parse_args(argv)
     mu, surface = _inputs(args, parser)
+    if args.command == "fmax" and args.warn_above != COMPARE_WARNING and not args.compare:
+        parser.error("fmax: --warn-above needs --compare")
+    if args.command == "fmax" and args.compare:
+        return _compare(args, parser, mu, surface)
     law = _law(args, mu)
     head = {"mu": mu, "zeta": surface.zeta, "omega": surface.omega, "law": args.law}
     if args.command == "fmax":
         found = strength(law, surface)
         row = head | {"f_max": found.f_max, "d_at_max": found.d_at_max}
+        if args.sigma is not None:  # physical inputs: the same in SI
+            row["si"] = {"strength": found.f_max * _pressure_scale(args),
+                         "d_at_max": found.d_at_max * args.sigma}
         if args.json:
             dump_json(row)
         else:

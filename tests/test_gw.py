@@ -222,3 +222,40 @@ def test_physical_inputs_take_the_names_of_fem_asperity_and_the_old_ones(capsys)
         assert main(common + [item for pair in pairs for item in pair]) == 0
         answers.append(json.loads(capsys.readouterr().out))
     assert answers[0] == answers[1] and answers[0]["f_max"] > 0
+
+
+def test_compare_puts_the_three_laws_side_by_side_and_warns(capsys, tmp_path, monkeypatch):
+    """`fmax --compare`: paper, refit and solved F̄max with their differences from the solved one;
+    the paper's equals plain `fmax`; the warning appears where the difference exceeds
+    --warn-above and not otherwise (at μ = 1, ζ = 3 the paper's law is 56% weaker)."""
+    import json
+
+    from gw.__main__ import main
+
+    monkeypatch.setenv("ADHESION_CACHE", str(tmp_path))
+    base = ["fmax", "--mu", "1", "--zeta", "3", "--accuracy", "draft", "--json"]
+    assert main(base) == 0
+    plain = json.loads(capsys.readouterr().out)
+    assert main(base + ["--compare"]) == 0
+    out = capsys.readouterr()
+    compared = json.loads(out.out)
+    assert set(compared) >= {"paper", "refit", "solved", "warning"}
+    assert compared["paper"]["f_max"] == plain["f_max"]
+    assert compared["solved"]["relative_to_solved"] == 0.0
+    assert 0 < compared["solved"]["interpolation_error"] < 0.01
+    off = compared["paper"]["f_max"] / compared["solved"]["f_max"] - 1.0
+    assert compared["paper"]["relative_to_solved"] == pytest.approx(off)
+    assert abs(off) > 0.1 and "paper's law" in compared["warning"] and "warning" in out.err
+    assert main(base + ["--compare", "--warn-above", "1"]) == 0
+    assert json.loads(capsys.readouterr().out)["warning"] is None
+
+
+@pytest.mark.parametrize("args", [
+    ["fmax", "--mu", "1", "--zeta", "3", "--warn-above", "0.2"],  # without --compare
+    ["fmax", "--mu", "1", "--zeta", "3", "--compare", "--law", "refit"],
+    ["fmax", "--mu", "1", "--zeta", "3", "--compare", "--warn-above", "-1"],
+])
+def test_compare_options_are_used_or_refused(args):
+    done = gw_cli(*args)
+    assert done.returncode == 2
+    assert len(done.stderr.strip().splitlines()) == 1, done.stderr
