@@ -10,6 +10,7 @@ import warnings
 
 from .closed_forms.laws import PAPER_LAWS
 from .closed_forms.scales import Scales, effective_modulus
+from .plumbing.checks import positive
 from .plumbing.cli import Parser, ProgressBar, dump_json, print_table, run
 from .plumbing.errors import DerjaguinWarning
 from .plumbing.files import writable_folder
@@ -79,6 +80,11 @@ def build_parser():
     curve.add_argument("--nu", type=float,
                        help="substrate Poisson's ratio (default: --nu1, else 0.3)")
     curve.add_argument("--layer-nu", type=float, help="layer Poisson's ratio (default: --nu)")
+    curve.add_argument("--spring-constant", type=float,
+                       help="load-line control through a spring (an AFM cantilever): its "
+                            "stiffness in N/m with physical inputs, else k = K eps/(2 pi R "
+                            "dgamma); jumps where dP/d(delta) reaches it (omit: displacement "
+                            "control)")
     curve.add_argument("--no-error-estimate", action="store_true",
                        help="skip the second, finer solve (no error estimate; faster)")
     curve.add_argument("--unstable-branch", action="store_true",
@@ -165,6 +171,8 @@ def _curve(args, parser):
     mu, scales, radius_ratio = _curve_inputs(args, parser)
     if args.out is not None:
         writable_folder(args.out, "--out")  # before solving
+    if args.spring_constant is not None and args.tolerance is not None:
+        parser.error("curve: --spring-constant takes a preset (--accuracy), not --tolerance")
     if args.layer_thickness is None and (args.layer_modulus_ratio != 1.0
                                          or args.layer_nu is not None):
         parser.error("curve: --layer-modulus-ratio and --layer-nu need --layer-thickness")
@@ -172,6 +180,9 @@ def _curve(args, parser):
     solid = Solid(nu=nu, layer_thickness=args.layer_thickness,
                   layer_modulus_ratio=args.layer_modulus_ratio,
                   layer_nu=nu if args.layer_nu is None else args.layer_nu)
+    spring = args.spring_constant
+    if spring is not None and scales is not None:  # N/m → 2πRΔγ/ε
+        spring = positive("--spring-constant", spring, unit="N/m") * scales.eps / scales.force
     bar = ProgressBar(f"{args.method.upper()} curve mu={mu:g}")
     try:
         if args.tolerance is not None:
@@ -182,7 +193,8 @@ def _curve(args, parser):
             result = solve_curve(mu, method=args.method, accuracy=args.accuracy, solid=solid,
                                  radius_ratio=radius_ratio,
                                  error_estimate=not args.no_error_estimate,
-                                 unstable_branch=args.unstable_branch, progress=bar)
+                                 unstable_branch=args.unstable_branch, spring_constant=spring,
+                                 progress=bar)
     except ContinuationError as exc:
         print(f"{PROG}: continuation failed: {exc}", file=sys.stderr)
         return 1

@@ -109,17 +109,26 @@ def _landing(surface, trace, curve, order, start, delta):
         if da * db > 0.0:
             continue
         t = da / (da - db) if da != db else 0.0
-        guess = (1.0 - t) * trace.states[a] + t * trace.states[b]
-        solved = correct(surface, guess, delta, np.array([0.0, 1.0, 0.0]),
-                         np.array([0.0, delta, 0.0]), 0.0)
-        if solved is None:  # e.g. a rippled segment: try the next stable crossing
+        landed = state_at(surface, trace, a, b, t, delta)
+        if landed is None:  # e.g. a rippled segment: try the next stable crossing
             continue
-        w, d, _, _ = solved
-        area, radius = surface.contact(w, d)
-        return pos + 1, dict(delta=d, x=surface.centre_gap(w, d), p=surface.force(w, d),
-                             area=area, a_c=radius)
+        return pos + 1, landed
     raise ContinuationError(f"no stable branch to land on at δ = {delta:.6g} (or Newton failed "
                             "on each)")
+
+
+def state_at(surface, trace, a, b, t, delta):
+    """The equilibrium at δ̄o = `delta` by Newton from the state interpolated at fraction `t`
+    between trace points a and b, as a row of COLUMNS; None if Newton does not converge."""
+    guess = (1.0 - t) * trace.states[a] + t * trace.states[b]
+    solved = correct(surface, guess, delta, np.array([0.0, 1.0, 0.0]),
+                     np.array([0.0, delta, 0.0]), 0.0)
+    if solved is None:
+        return None
+    w, d, _, _ = solved
+    area, radius = surface.contact(w, d)
+    return dict(delta=d, x=surface.centre_gap(w, d), p=surface.force(w, d), area=area,
+                a_c=radius)
 
 
 def walk(surface, trace, curve, order):

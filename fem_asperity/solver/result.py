@@ -59,8 +59,11 @@ class CurveResult:
     holds the same relative to the event.
     dofs, surface_nodes, points, newton_iterations, wall_s: cost.
     folds: folds of δ̄o met: changes of stability along the whole curve, or jumps of the paths.
-    radius_ratio (R/ε of the exact sphere; None: Derjaguin's parabola), p_end, unstable_branch:
-    the inputs of `solve_curve` beyond μ, method, accuracy and solid.
+    radius_ratio (R/ε of the exact sphere; None: Derjaguin's parabola), p_end, unstable_branch,
+    spring_constant (load-line control; None: displacement control): the inputs of
+    `solve_curve` beyond μ, method, accuracy and solid. z_jumps: under load-line control, the
+    spring end's z̄ (ε) at the jumps, {'z_jump_in', 'z_jump_out'}; the events' separations stay
+    the sphere's δ̄o.
     status: one of `STATUSES` ('ok' unless something calls for a finer accuracy);
     message: how it was obtained, and why the status is not 'ok' where it is not.
     """
@@ -85,6 +88,8 @@ class CurveResult:
     radius_ratio: float | None = None
     p_end: float = 1.0
     unstable_branch: bool = False
+    spring_constant: float | None = None
+    z_jumps: dict | None = None
     model: Model | None = field(default=None, repr=False, compare=False)
 
     @property
@@ -102,7 +107,9 @@ class CurveResult:
         profile, the control and the paths traced."""
         return {"solid": asdict(self.solid),
                 "profile": "derjaguin" if self.radius_ratio is None else "sphere",
-                "radius_ratio": self.radius_ratio, "control": "displacement",
+                "radius_ratio": self.radius_ratio,
+                "control": "displacement" if self.spring_constant is None else "load line",
+                "spring_constant": self.spring_constant,
                 "p_end": self.p_end, "unstable_branch": self.unstable_branch}
 
     def records(self):
@@ -113,6 +120,7 @@ class CurveResult:
             "method": self.method,
             "accuracy": self.accuracy,
             **self.events.records(),
+            **(self.z_jumps or {}),
             "error_estimate": self.error_estimate,
             "relative_error_estimate": self.relative_error_estimate,
             "dofs": self.dofs,

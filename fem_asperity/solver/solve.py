@@ -20,6 +20,7 @@ from threadpoolctl import threadpool_limits
 from ..path.branches import stable_paths
 from ..path.curve import read_events
 from ..path.grids import FixedGrid
+from ..path.load_line import load_line_paths
 from ..path.whole_curve import whole_curve_paths
 from ..plumbing.checks import in_range, positive
 from ..plumbing.errors import ContinuationError, InputError
@@ -44,6 +45,9 @@ MU_ONSET_HI, REFINEMENTS = 0.6982, 2
 #: pins the lower end.
 MU_RANGE = (1e-3, 1e4)
 
+#: Stiffest spring taken (2πRΔγ/ε): beyond it the control is displacement control to round-off
+#: (z̄ − δ̄o = −P̄/k̄ below 1e-12 ε). Not pinned by a test.
+SPRING_MAX = 1e12
 #: Progress shown until a solve and its estimate's solve have both ended.
 ALMOST_DONE = 0.99
 #: Event keys compared between the two meshes of the error estimate.
@@ -52,22 +56,34 @@ ESTIMATED = ("p_max", "delta_oc", "a_c", "delta_o_star", "x_oc", "delta_jump_in"
 
 
 def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, unstable_branch=False,
-                      progress=None):
+                      spring_constant=None, progress=None):
     """One curve on the given discretisation (`presets.discretisation`; no error estimate, inputs
-    unchecked beyond the discretisation's own): for studies that set the resolution themselves."""
+    unchecked beyond the discretisation's own): for studies that set the resolution themselves.
+    spring_constant: load-line control through a spring of that stiffness (2πRΔγ/ε), read off
+    the whole curve (`path.load_line`); None: displacement control."""
     start = time.perf_counter()
+    whole = unstable_branch or spring_constant is not None
+    z_jumps = None
     with threadpool_limits(PATH_BLAS_THREADS, user_api="blas"):
         grids = disc.grids(mu, solid=solid, radius_ratio=radius_ratio)
         fixed = isinstance(grids, FixedGrid)
-        if unstable_branch and not fixed:
-            raise InputError("grids that follow the contact edge (BEM at large mu) trace "
-                             "stable branches only")
-        if unstable_branch:
+        if whole and not fixed:
+            raise InputError("grids that follow the contact edge (BEM at mu >= 6) trace stable "
+                             "branches only: no unstable_branch or spring_constant there")
+        if whole:
             solved = whole_curve_paths(grids.start, disc.trace, progress)
         else:
             solved = stable_paths(grids, disc.trace, progress)
         approach, retraction, jumps_in, jumps_out, curve, traced = solved
-    folds = int(curve.branch.max()) if unstable_branch else len(jumps_in) + len(jumps_out)
+        if spring_constant is not None:
+            (approach, retraction, jumps_in, jumps_out, *_, z_in, z_out) = load_line_paths(
+                grids.start, traced, curve, spring_constant)
+            z_jumps = {"z_jump_in": z_in[0] if z_in else None,
+                       "z_jump_out": z_out[-1] if z_out else None}
+    if spring_constant is not None:
+        folds = len(jumps_in) + len(jumps_out)
+    else:
+        folds = int(curve.branch.max()) if unstable_branch else len(jumps_in) + len(jumps_out)
     message = f"{folds} folds of the equilibrium curve" + grids.summary()
     if sizing_mu(mu, solid) != mu:
         message += (f"; elements sized for the layer's Tabor parameter "
@@ -98,6 +114,8 @@ def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, unstable_br
         radius_ratio=radius_ratio,
         p_end=disc.trace.p_end,
         unstable_branch=unstable_branch,
+        spring_constant=spring_constant,
+        z_jumps=z_jumps,
         model=Model(grids.elastic, grids.start, traced) if fixed else None,
     )
 
@@ -166,7 +184,8 @@ def _one_sided(result, partner):
 
 
 def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_ratio=None,
-                p_end=1.0, error_estimate=True, unstable_branch=False, progress=None):
+                p_end=1.0, error_estimate=True, unstable_branch=False, spring_constant=None,
+                progress=None):
     """Approach and retraction of a rigid sphere on the half-space at Tabor parameter `mu`.
 
     method: 'fem' (finite elements, layers allowed) or 'bem' (boundary integral, homogeneous).
@@ -183,6 +202,10 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
         the difference (`_estimate`). That solve runs alongside on the second core; the
         wall time is about that of the finer solve. If it fails or ripples, the estimate is
         None and `status` and `message` say why; the result is kept.
+    spring_constant: load-line control, as through an AFM cantilever, with a spring of this
+        stiffness k̄ = Kε/(2πRΔγ) (> 0): the jumps come where dP̄/dδ̄o reaches k̄, and the
+        result's z_jumps hold the spring end's z̄ at them (`path.load_line`); the whole curve is
+        traced (uniform grids: μ < 6 for the BEM). None (default): displacement control.
     A curve that ripples, or misses a jump it must have, is solved again on refined
     discretisations (up to REFINEMENTS times); one that still does carries that `status`.
     progress: callable(fraction in [0, 1]) for a progress bar.
@@ -192,8 +215,12 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     positive("p_end", p_end)
     if radius_ratio is not None:
         in_range("radius_ratio", radius_ratio, 10.0, np.inf, closed_lo=True)
-    disc = discretisation(sizing_mu(mu, solid), accuracy, p_end=p_end, method=method)
-    options = dict(solid=solid, radius_ratio=radius_ratio, unstable_branch=unstable_branch)
+    if spring_constant is not None:
+        in_range("spring_constant", spring_constant, 0.0, SPRING_MAX)
+    disc = discretisation(sizing_mu(mu, solid), accuracy, p_end=p_end, method=method,
+                          track_edge=False if spring_constant is not None else None)
+    options = dict(solid=solid, radius_ratio=radius_ratio, unstable_branch=unstable_branch,
+                   spring_constant=spring_constant)
     if not error_estimate:
         return _solve_refining(mu, disc, progress=progress, **options)[0]
     start = time.perf_counter()

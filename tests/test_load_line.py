@@ -1,0 +1,91 @@
+"""Load-line control (a compliant cantilever): Bradley's closed form, the rigid limit, and the
+jumps a spring adds."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+from scipy.optimize import brentq
+
+from fem_asperity import InputError
+from fem_asperity.solver.solve import solve_curve
+
+
+def bradley(d):
+    """Bradley's force on a rigid sphere over a rigid flat (eq. 8), 2πRΔγ, and its slope."""
+    return (d**-8 - 4 * d**-2) / 3, 8 / 3 * (d**-3 - d**-9)
+
+
+def test_rigid_bodies_on_a_spring_jump_where_bradleys_slope_is_the_stiffness():
+    """μ = 1e-3 (rigid to 1e-4 in the deflection): with k̄ = 0.5 the approach jumps where
+    dP̄/dδ̄ = k̄ beyond the LJ equilibrium and the retraction where it is k̄ inside the
+    inflection δ̄ = 3^(1/6), each at z̄ = δ̄ − P̄/k̄. z̄ is checked to 1e-4; δ̄ at a fold of z̄ is
+    ill-conditioned (z̄ is flat there: an error e in z̄ moves δ̄ by about √(2e/z̄'')), so to 5e-3."""
+    k = 0.5
+    d_in = brentq(lambda d: bradley(d)[1] - k, 3 ** (1 / 6), 10.0)
+    d_out = brentq(lambda d: bradley(d)[1] - k, 1.0, 3 ** (1 / 6))
+    row = solve_curve(1e-3, method="bem", spring_constant=k, error_estimate=False).records()
+    assert row["jump_in"] and row["z_jump_in"] == pytest.approx(d_in - bradley(d_in)[0] / k,
+                                                                rel=1e-4)
+    assert row["z_jump_out"] == pytest.approx(d_out - bradley(d_out)[0] / k, rel=1e-4)
+    assert row["delta_jump_in"] == pytest.approx(d_in, rel=5e-3)
+    assert row["delta_jump_out"] == pytest.approx(d_out, rel=5e-3)
+    assert row["p_jump_before"] == pytest.approx(bradley(d_in)[0], rel=5e-3)
+    assert row["p_off"] == pytest.approx(-1.0, rel=1e-4)  # the minimum is passed, not jumped
+
+
+def test_a_stiff_spring_gives_displacement_control():
+    """k̄ = 1e8 at μ = 2: the events of displacement control on the whole curve (folds to 4e-5,
+    the forces after the jumps to 1e-4; the spring's folds are parabolas through samples, the
+    displacement control's exact), and z̄ = δ̄o at the jumps."""
+    spring = solve_curve(2.0, method="bem", accuracy="draft", spring_constant=1e8,
+                         error_estimate=False).records()
+    rigid = solve_curve(2.0, method="bem", accuracy="draft", unstable_branch=True,
+                        error_estimate=False).records()
+    for key, rel in (("p_max", 1e-9), ("delta_oc", 1e-9), ("p_off", 1e-9),
+                     ("delta_jump_in", 1e-5), ("delta_jump_out", 1e-4), ("p_jump_after", 1e-5),
+                     ("p_jump_out_after", 1e-3)):
+        assert spring[key] == pytest.approx(rigid[key], rel=rel), key
+    assert spring["z_jump_in"] == pytest.approx(spring["delta_jump_in"], abs=1e-7)
+    assert rigid.get("z_jump_in") is None and spring["inputs"]["control"] == "load line"
+
+
+def test_a_soft_spring_jumps_below_the_onset_and_earlier():
+    """μ = 0.5 has no jump-in under displacement control (onset 0.697); on springs of k̄ = 1 and
+    0.3 it jumps in, the softer one farther out (larger z̄), as an AFM cantilever does."""
+    assert not solve_curve(0.5, method="bem", accuracy="draft", error_estimate=False).events.jump_in
+    stiff, soft = (solve_curve(0.5, method="bem", accuracy="draft", spring_constant=k,
+                               error_estimate=False).records() for k in (1.0, 0.3))
+    assert stiff["jump_in"] and soft["jump_in"]
+    assert soft["z_jump_in"] > stiff["z_jump_in"] and soft["z_jump_out"] > stiff["z_jump_out"]
+
+
+@pytest.mark.parametrize("k", [0.0, -1.0, float("inf")])
+def test_a_spring_constant_must_be_positive_and_finite(k):
+    with pytest.raises(InputError, match="spring_constant"):
+        solve_curve(1.0, method="bem", accuracy="draft", spring_constant=k)
+
+
+def test_cli_spring_in_newtons_per_metre():
+    """--spring-constant in N/m with physical inputs is k̄ = Kε/(2πRΔγ): K = 2πRΔγ/ε · 0.5 gives
+    the dimensionless k̄ = 0.5's events; a negative stiffness exits 2 in one line."""
+    R, dgamma, eps = 1e-6, 0.05, 3e-10
+    physical = ["--E-star", "1e11", "--dgamma", str(dgamma), "--eps", str(eps), "--R", str(R),
+                "--profile", "derjaguin", "--method", "bem", "--accuracy", "draft",
+                "--no-error-estimate", "--json"]
+    K = 0.5 * 2 * 3.141592653589793 * R * dgamma / eps
+
+    def curve(*args):
+        return subprocess.run([sys.executable, "-m", "fem_asperity", "curve", *args],
+                              capture_output=True, text=True)
+
+    done = curve(*physical, "--spring-constant", str(K))
+    assert done.returncode == 0, done.stderr
+    row = json.loads(done.stdout)
+    assert row["inputs"]["spring_constant"] == pytest.approx(0.5, rel=1e-12)
+    same = solve_curve(row["mu"], method="bem", accuracy="draft", spring_constant=0.5,
+                       error_estimate=False).records()
+    assert row["z_jump_in"] == same["z_jump_in"]
+    bad = curve(*physical, "--spring-constant", "-1")
+    assert bad.returncode == 2 and len(bad.stderr.strip().splitlines()) == 1
