@@ -89,3 +89,13 @@ def test_cli_spring_in_newtons_per_metre():
     assert row["z_jump_in"] == same["z_jump_in"]
     bad = curve(*physical, "--spring-constant", "-1")
     assert bad.returncode == 2 and len(bad.stderr.strip().splitlines()) == 1
+
+
+def test_out_writes_the_cantilever_figure(tmp_path):
+    from fem_asperity.solver.output import write_all
+
+    result = solve_curve(0.5, method="bem", accuracy="draft", spring_constant=0.5,
+                         error_estimate=False)
+    names = {p.name for p in write_all(result, tmp_path / "out")}
+    assert {"cantilever.png", "curve.png", "result.json"} <= names
+    assert (tmp_path / "out" / "cantilever.png").read_bytes()[:4] == b"\x89PNG"

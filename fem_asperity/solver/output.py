@@ -1,5 +1,5 @@
-"""Files of one curve: CSV curves, a force/contact figure, and (FE) VTU + PNG fields at chosen
-states.
+"""Files of one curve: CSV curves, a force/contact figure, under load-line control the
+cantilever's deflection against the piezo position, and (FE) VTU + PNG fields at chosen states.
 
 Field units: coordinates r, z in √(Rε); displacement in ε; σ_zz in Δγ/ε (the LJ traction unit,
 so σ_zz ≈ −p̄ on the surface). `write_all` writes all files or none (a staging folder).
@@ -36,8 +36,32 @@ def plot_curve(result, path):
     axes[0].set_ylim(-1.1, max(0.2, min(1.2, float(np.max(eq.p)))))
     axes[0].legend()
     profile = "" if result.radius_ratio is None else f", sphere R/ε = {result.radius_ratio:g}"
+    control = ("displacement control" if result.spring_constant is None
+               else f"load-line control (k̄ = {result.spring_constant:g})")
     fig.suptitle(f"{result.method.upper()}, μ = {result.mu:g}, accuracy '{result.accuracy}', "
-                 f"{result.solid.description()}{profile}, displacement control")
+                 f"{result.solid.description()}{profile}, {control}")
+    return save_figure(fig, path)
+
+
+def plot_cantilever(result, path):
+    """The curve as an AFM records it under load-line control (`spring_constant` k̄): the
+    cantilever's deflection −P̄/k̄ against the spring end's (piezo) position z̄ = δ̄o − P̄/k̄, both
+    in ε, approach and retraction, the jumps as horizontal segments at fixed z̄."""
+    from matplotlib.figure import Figure
+
+    k = result.spring_constant
+    fig = Figure(figsize=(6, 4.5), layout="constrained")
+    ax = fig.subplots()
+    for name, colour in (("approach", "tab:blue"), ("retraction", "tab:red")):
+        curve = getattr(result, name)
+        ax.plot(curve.delta - curve.p / k, -curve.p / k, "-", color=colour, label=name)
+    ax.set_xlabel("piezo position z̄ = z/ε (spring end)")
+    ax.set_ylabel("cantilever deflection z̄ − δ̄o = −P̄/k̄ (ε); > 0: bent toward the surface")
+    ax.set_xlim(None, 10.0)
+    ax.grid(alpha=0.3)
+    ax.legend()
+    ax.set_title(f"{result.method.upper()}, μ = {result.mu:g}, k̄ = Kε/(2πRΔγ) = {k:g}, "
+                 f"load-line control")
     return save_figure(fig, path)
 
 
@@ -113,6 +137,8 @@ def write_all(result, folder):
     with staged_folder(folder) as stage:
         names = [p.name for p in write_curves(result, stage)]
         names.append(plot_curve(result, stage / "curve.png").name)
+        if result.spring_constant is not None:
+            names.append(plot_cantilever(result, stage / "cantilever.png").name)
         if result.method == "fem":
             ev, eq = result.events, result.equilibrium
             for label, delta, p in (("p_max", ev.delta_oc, ev.p_max),
