@@ -119,8 +119,9 @@ class Scales:
     def to_si(self, values):
         """The dimensionless event values `values` (key → value, as `Events.records()` or an
         error estimate) in SI by their key's kind: forces (p_*) in N, separations and gaps
-        (delta_*, x_*) in m, contact radii (a_*) in m; other keys and None values are left out."""
+        (delta_*, x_*, and z_*: a cantilever's far end) in m, contact radii (a_*) in m; other
+        keys and None values are left out."""
         scale = {"p": self.force, "delta": self.length_z, "x": self.length_z,
-                 "a": self.length_r}
+                 "z": self.length_z, "a": self.length_r}
         return {key: value * scale[key.split("_")[0]] for key, value in values.items()
                 if key.split("_")[0] in scale and isinstance(value, float)}
