@@ -145,3 +145,18 @@ def test_fig9(tmp_path, monkeypatch):
     # The paper's reading of Fig. 9: at μ = 10 the rough surface's strength of adhesion stays
     # well below the single-asperity JKR pull-off 0.75.
     assert 0.0 < ns["strengths"][10.0] < 0.75
+
+
+def test_afm_cantilever(tmp_path, monkeypatch):
+    """Below the onset (μ ≈ 0.59) the rigid holder shows no jump-in and the cantilever does; the
+    pull-off in newtons is p̄_off · 2πRΔγ; the cantilever figure is written."""
+    ns = run_example("afm_cantilever", tmp_path, monkeypatch)
+    assert 0.5 < ns["scales"].mu < 0.69
+    assert ns["rigid"].events.jump_in is None and ns["lever"].events.jump_in is not None
+    R, dgamma = ns["R"], ns["DGAMMA"]
+    assert ns["pull_off"] == pytest.approx(ns["row"]["p_off"] * 2 * np.pi * R * dgamma)
+    assert ns["k_bar"] == pytest.approx(ns["K"] * ns["EPS"] / (2 * np.pi * R * dgamma))
+    saved = json.loads((tmp_path / "result.json").read_text())
+    assert saved["inputs"]["control"] == "load line"
+    assert saved["z_jump_in"] == ns["row"]["z_jump_in"]
+    assert_png(tmp_path / "cantilever.png")
