@@ -133,3 +133,11 @@ def test_a_saved_result_records_every_input_the_version_and_the_revision():
     assert saved["inputs"]["control"] == "displacement" and saved["inputs"]["p_end"] == 1.0
     assert saved["version"] == fem_asperity.__version__
     assert saved["solver_revision"] == solver_revision() and len(saved["solver_revision"]) == 10
+
+
+def test_a_layer_the_fe_cannot_resolve_is_refused_up_front():
+    """A film 100 times softer than the substrate at μ = 1 has the Tabor parameter 21.5: its
+    cohesive zone needs 22000 FE surface elements; refused before any work, naming why."""
+    solid = Solid(layer_thickness=0.5, layer_modulus_ratio=0.01)
+    with pytest.raises(InputError, match="most compliant material"):
+        solve_curve(1.0, accuracy="draft", solid=solid)

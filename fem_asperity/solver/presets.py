@@ -79,6 +79,11 @@ RIPPLE_FREE = {"fem": 0.45, "bem": 0.28, "edge": 0.33}
 #: Presets stay this factor below the ripple-free size: it was measured at a few μ only. Not
 #: pinned by a test.
 RIPPLE_MARGIN = 1.25
+#: Most surface elements of an FE curve, 2500: the dense condensed surface's factorisations grow
+#: like the cube of the count (at μ = 5 the `draft` estimate's solve, 1141 elements, took 234 s;
+#: 2500 would take about 40 min); a soft layer at μ = 1 with modulus ratio 0.01 asked for 22000.
+#: test_fem_curve.py::test_a_layer_the_fe_cannot_resolve_is_refused_up_front.
+FE_MAX_SURFACE_ELEMENTS = 2500
 #: Methods: finite elements ('fem') or the boundary-integral solver ('bem').
 METHODS = ("fem", "bem")
 #: The error estimate's finer solve grades the bulk (FE) or tail (BEM) twice as gently, so the
@@ -138,7 +143,15 @@ class FEDiscretisation(_Resolution):
     method = "fem"
 
     def elastic(self, solid=Solid()):
-        """The FE half-space of `solid` on this mesh, condensed onto its surface."""
+        """The FE half-space of `solid` on this mesh, condensed onto its surface; refuses a
+        surface of more than FE_MAX_SURFACE_ELEMENTS elements (`InputError`)."""
+        elements = self.r_fine / self.h_surface
+        if elements > FE_MAX_SURFACE_ELEMENTS:
+            raise InputError(
+                f"the FE surface would need {elements:.0f} elements ({self.h_surface:.3g} over "
+                f"r <= {self.r_fine:.3g} sqrt(R eps), sized for the most compliant material's "
+                f"Tabor parameter); the FE takes at most {FE_MAX_SURFACE_ELEMENTS}: a smaller mu, "
+                f"a stiffer or thinner layer, or the BEM for a homogeneous solid")
         mesh = graded_mesh(h_surface=self.h_surface, r_fine=self.r_fine, size=self.size,
                            grading=self.grading, layer_thickness=solid.layer_thickness)
         return HalfSpace(mesh, order=self.order, solid=solid)
