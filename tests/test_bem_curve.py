@@ -221,3 +221,25 @@ def test_progress_rises_to_one_at_the_end_only(mu, estimate):
     assert all(b >= a for a, b in zip(seen, seen[1:]))
     assert seen[-1] == 1.0 and max(seen[:-1]) < 1.0
     assert max(seen[:-1]) > 0.9  # the retraction moves the bar on before the end
+
+
+def test_an_interrupted_curve_stops_its_estimate_solve_too(monkeypatch):
+    """Ctrl-C (or an error) in the curve ends the estimate's longer solve at its next point
+    instead of waiting for it: the estimate's solve ends with `_Stopped`."""
+    import fem_asperity.solver.solve as solve
+
+    real, ended = solve.solve_discretised, {}
+
+    def interrupted(mu, disc, **kwargs):
+        if not disc.name.endswith("/estimate"):
+            raise KeyboardInterrupt
+        try:
+            return real(mu, disc, **kwargs)
+        except BaseException as exc:
+            ended["estimate"] = type(exc).__name__
+            raise
+
+    monkeypatch.setattr(solve, "solve_discretised", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        solve.solve_curve(3.0, method="bem", accuracy="fine")
+    assert ended == {"estimate": "_Stopped"}

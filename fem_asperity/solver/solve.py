@@ -227,15 +227,21 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     # The estimate's solve runs in a second thread: the dense factorisations release the GIL,
     # so the two curves share the two cores (one BLAS thread each). The bar shows the slower.
     report_main, report_finer = _both(progress)
+    stop = threading.Event()  # set, the estimate's solve ends at its next point
     with threadpool_limits(PATH_BLAS_THREADS, user_api="blas"), ThreadPoolExecutor(1) as pool:
-        finer_job = pool.submit(solve_discretised, mu, disc.for_estimate(), progress=report_finer,
-                                **options)
-        result, solved_on = _solve_refining(mu, disc, progress=report_main, **options)
+        finer_job = pool.submit(solve_discretised, mu, disc.for_estimate(),
+                                progress=_stoppable(report_finer, stop), **options)
+        try:
+            result, solved_on = _solve_refining(mu, disc, progress=report_main, **options)
+        except BaseException:  # an error or Ctrl-C: do not wait for the longer solve
+            stop.set()
+            raise
         try:
             partner_on = solved_on.for_estimate()
             if solved_on is disc:
                 partner = finer_job.result()
             else:  # refined for ripple or a missed jump: its own partner
+                stop.set()
                 partner = solve_discretised(mu, partner_on, **options)
             if partner.ripples:
                 raise ContinuationError(f"it ripples ({partner.folds} folds)")
@@ -249,6 +255,21 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
         progress(1.0)
     return replace(result, error_estimate=estimate, status=status, message=result.message + note,
                    wall_s=time.perf_counter() - start)
+
+
+class _Stopped(Exception):
+    """Raised inside the estimate's solve once it is no longer wanted."""
+
+
+def _stoppable(report, stop):
+    """A progress callback that passes the fraction to `report` (if any) and ends the solve
+    calling it (`_Stopped`) once `stop` is set: a solve reports after every point."""
+    def progress(fraction):
+        if stop.is_set():
+            raise _Stopped("the curve it estimates ended first")
+        if report is not None:
+            report(fraction)
+    return progress
 
 
 def _both(progress):
