@@ -170,7 +170,8 @@ def test_curve_json_files_and_progress(tmp_path):
             "fields_p_max.vtu", "fields_p_max.png", "fields_p_off.vtu"} <= names
     assert not [n for n in names if n.startswith(".")]  # no temporary files left
     header = (out / "approach.csv").read_text().splitlines()[0]
-    assert header == "delta_o,x_o,p,area,a_c,stable,branch"
+    assert header == ("delta_o/eps,x_o/eps,p/(2 pi R dgamma),area/(eps R),a_c/sqrt(eps R),"
+                      "stable,branch")
     import meshio
 
     fields = meshio.read(out / "fields_p_max.vtu")

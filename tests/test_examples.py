@@ -92,8 +92,9 @@ def test_single_curve(tmp_path, monkeypatch):
     # μ = 2 is above the onset of jump-in: the approach jumps in and the retraction jumps out.
     assert result["jump_in"] and result["delta_jump_out"] > result["delta_jump_in"]
     columns, rows = read_csv(tmp_path / "retraction.csv")
-    assert columns[:3] == ["delta_o", "x_o", "p"]
-    assert min(float(r["p"]) for r in rows) == pytest.approx(result["p_off"], abs=1e-9)
+    assert columns[:3] == ["delta_o/eps", "x_o/eps", "p/(2 pi R dgamma)"]
+    assert min(float(r["p/(2 pi R dgamma)"]) for r in rows) == pytest.approx(result["p_off"],
+                                                                abs=1e-9)
 
 
 def test_mu_sweep(tmp_path, monkeypatch):

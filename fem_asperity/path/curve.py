@@ -30,13 +30,20 @@ class Curve:
         return self.delta.size
 
     def csv(self):
-        """The curve as CSV text with a header row (delta_o, x_o, p, area, a_c, stable, branch)."""
+        """The curve as CSV text with a header row naming each column and its unit
+        (`CSV_HEADER`: quantity/unit, the dimensionless units of the paper)."""
         out = io.StringIO()
         writer = csv.writer(out, lineterminator="\n")
-        writer.writerow(["delta_o", "x_o", "p", "area", "a_c", "stable", "branch"])
+        writer.writerow(CSV_HEADER)
         for row in zip(*(getattr(self, f.name) for f in fields(self))):
             writer.writerow([f"{v:.10g}" if isinstance(v, float) else int(v) for v in row])
         return out.getvalue()
+
+
+#: Header of a curve's CSV: each column as quantity/unit (ε the LJ spacing, R the radius, Δγ the
+#: work of adhesion; forces < 0 tensile), then the stability flag and the branch number.
+CSV_HEADER = ("delta_o/eps", "x_o/eps", "p/(2 pi R dgamma)", "area/(eps R)", "a_c/sqrt(eps R)",
+              "stable", "branch")
 
 
 def curve_from_columns(delta, x, p, area, a_c, stable, branch):
