@@ -84,6 +84,11 @@ RIPPLE_MARGIN = 1.25
 #: 2500 would take about 40 min); a soft layer at μ = 1 with modulus ratio 0.01 asked for 22000.
 #: test_fem_curve.py::test_a_layer_the_fe_cannot_resolve_is_refused_up_front.
 FE_MAX_SURFACE_ELEMENTS = 2500
+#: Most elements of an FE mesh, 300k: at μ = 5 the `draft` estimate's solve had 125k (498k DOFs)
+#: and took 234 s; a layer 0.01 √(Rε) thick and 10 times softer at μ = 1 meshed 2.2M and the
+#: process was killed for memory at 13.7 GB. Checked after meshing (seconds), before assembly.
+#: test_fem_curve.py::test_a_layer_the_fe_cannot_resolve_is_refused_up_front.
+FE_MAX_ELEMENTS = 300_000
 #: Methods: finite elements ('fem') or the boundary-integral solver ('bem').
 METHODS = ("fem", "bem")
 #: The error estimate's finer solve grades the bulk (FE) or tail (BEM) twice as gently, so the
@@ -154,6 +159,12 @@ class FEDiscretisation(_Resolution):
                 f"a stiffer or thinner layer, or the BEM for a homogeneous solid")
         mesh = graded_mesh(h_surface=self.h_surface, r_fine=self.r_fine, size=self.size,
                            grading=self.grading, layer_thickness=solid.layer_thickness)
+        if mesh.t.shape[1] > FE_MAX_ELEMENTS:
+            raise InputError(
+                f"the FE mesh has {mesh.t.shape[1]} elements (a layer {solid.layer_thickness} "
+                f"sqrt(R eps) thick meshed with surface elements of {self.h_surface:.3g}); the FE "
+                f"takes at most {FE_MAX_ELEMENTS}: a thicker or stiffer layer, a smaller mu, or "
+                f"a coarser accuracy")
         return HalfSpace(mesh, order=self.order, solid=solid)
 
 
