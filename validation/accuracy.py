@@ -275,6 +275,7 @@ def figure(study):
     """Error of P̄off and δ̄oc against the wall time of one curve (no estimate), log-log, per μ:
     the Pareto front as a line, the presets as filled markers, the other settings open."""
     from matplotlib.figure import Figure
+    from matplotlib.ticker import NullFormatter
 
     mus = sorted({r["mu"] for r in study["rows"]})
     fig = Figure(figsize=(4.2 * len(mus), 7.0), layout="constrained")
@@ -296,7 +297,8 @@ def figure(study):
             if front:
                 ax.loglog(*zip(*front), "k--", lw=0.8, label="Pareto front")
                 ax.legend(fontsize=7)
-            ax.set_xlabel("wall time [s]")
+            ax.xaxis.set_minor_formatter(NullFormatter())  # minor labels overlap on short axes
+            ax.set_xlabel("wall time of one curve [s]")
             ax.set_ylabel(f"relative error of {key}")
             ax.set_title(f"μ = {mu:g}")
     fig.suptitle("Speed against accuracy: one curve per setting (filled: the presets; open: "
