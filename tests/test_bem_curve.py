@@ -74,7 +74,7 @@ def test_out_files_are_all_or_nothing(tmp_path, monkeypatch):
     names = {p.name for p in output.write_all(result, target)}
     assert names == {"approach.csv", "retraction.csv", "equilibrium.csv", "result.json",
                      "curve.png"}
-    assert (target / "approach.csv").read_text().startswith("delta_o,")
+    assert (target / "approach.csv").read_text().startswith("delta_o/eps,")
 
 
 def test_tolerance_driven_solve_meets_its_tolerance():
