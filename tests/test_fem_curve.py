@@ -150,3 +150,14 @@ def test_a_layer_the_fe_cannot_resolve_is_refused_up_front():
     stiff = solve_curve(1.0, accuracy="draft", error_estimate=False,
                         solid=Solid(layer_thickness=0.01, layer_modulus_ratio=100.0))
     assert stiff.status == "ok" and stiff.folds == 2
+
+
+@pytest.mark.slow
+def test_a_soft_film_is_meshed_for_its_own_tabor_parameter():
+    """A film 10 times softer than the substrate, 0.5 √(Rε) thick, at μ = 1: meshed for the
+    substrate's μ its `default` curve showed 7 folds (ripple); meshed for the film's
+    Tabor parameter, 1 · 0.1^(−2/3) = 4.64, it has the physical two, and says why."""
+    solid = Solid(layer_thickness=0.5, layer_modulus_ratio=0.1)
+    result = solve_curve(1.0, solid=solid, error_estimate=False)
+    assert result.status == "ok" and result.folds == 2
+    assert "layer's Tabor parameter 4.642" in result.message
