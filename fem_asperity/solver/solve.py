@@ -80,14 +80,15 @@ def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, unstable_br
                 grids.start, traced, curve, spring_constant)
             z_jumps = {"z_jump_in": z_in[0] if z_in else None,
                        "z_jump_out": z_out[-1] if z_out else None}
-    if spring_constant is not None:
-        folds = len(jumps_in) + len(jumps_out)
+    if unstable_branch and spring_constant is None:  # stability changes along the whole curve
+        folds = int(curve.branch.max())
     else:
-        folds = int(curve.branch.max()) if unstable_branch else len(jumps_in) + len(jumps_out)
+        folds = len(jumps_in) + len(jumps_out)
     message = f"{folds} folds of the equilibrium curve" + grids.summary()
-    if sizing_mu(mu, solid) != mu:
-        message += (f"; elements sized for the layer's Tabor parameter "
-                    f"{sizing_mu(mu, solid):.4g}, the more compliant material")
+    sized_for = sizing_mu(mu, solid)
+    if sized_for != mu:
+        message += (f"; elements sized for the layer's Tabor parameter {sized_for:.4g}, the more "
+                    f"compliant material")
     status = "ok"
     if folds > PHYSICAL_FOLDS:
         status = "ripples"
@@ -244,7 +245,7 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
                 stop.set()
                 partner = solve_discretised(mu, partner_on, **options)
             if partner.ripples:
-                raise ContinuationError(f"it ripples ({partner.folds} folds)")
+                raise ContinuationError(f"it rippled ({partner.folds} folds)")
             estimate = _estimate(result, solved_on, partner, partner_on)
             note, status = _one_sided(result, partner), result.status
         except Exception as exc:  # the estimate never costs the result: whatever stopped it
