@@ -9,7 +9,14 @@ import sys
 import warnings
 
 from .closed_forms.laws import PAPER_LAWS
-from .closed_forms.scales import Scales, effective_modulus
+from .closed_forms.physical_arguments import (
+    USAGE,
+    add_physical_arguments,
+    physical_given,
+    physical_scales,
+    scale_record,
+)
+from .closed_forms.scales import si_unit
 from .plumbing.checks import positive
 from .plumbing.cli import Parser, ProgressBar, dump_json, print_table, run
 from .plumbing.errors import DerjaguinWarning
@@ -22,13 +29,8 @@ LAWS_LEGEND = """\
 Paper closed-form laws (Song & Komvopoulos eqs. 2, 6, 7, 10, 12, 13); jump-in for mu >= 0.5.
 p_max: max adhesive force / (2 pi R dgamma), < 0 tensile; delta_oc, delta_o_star: separation at
 p_max and at first contact / eps; a_c: compressive contact radius at p_max / sqrt(eps R);
-x_oc: centre gap at jump-in / eps ('-' where there is no jump-in)."""
-
-
-def _physical_arguments(parser):
-    parser.add_argument("--dgamma", type=float, help="work of adhesion [J/m^2]")
-    parser.add_argument("--eps", type=float, help="equilibrium spacing [m]")
-    parser.add_argument("--R", type=float, help="reduced radius of curvature [m]")
+x_oc: centre gap at jump-in / eps ('-' where there is no jump-in).
+With physical inputs, the columns ending in _N (newtons) and _m (metres) are the same in SI."""
 
 
 def build_parser():
@@ -36,31 +38,20 @@ def build_parser():
     commands = parser.add_subparsers(dest="command", required=True)
 
     laws = commands.add_parser("laws", help="events predicted by the paper's closed-form laws")
-    laws.add_argument("--mu", type=float, nargs="+", help="Tabor parameter(s), > 0")
-    laws.add_argument("--E-star", dest="E_star", type=float,
-                      help="effective modulus [Pa] (with --dgamma, --eps, --R instead of --mu)")
-    _physical_arguments(laws)
+    laws.add_argument("--mu", type=float, nargs="+",
+                      help=f"Tabor parameter(s), > 0; or the physical inputs ({USAGE})")
+    add_physical_arguments(laws)
     laws.add_argument("--json", action="store_true",
                       help="print a JSON list (one object per mu) instead of a table")
 
     scales = commands.add_parser("scales", help="E*, Tabor parameter and natural scales")
-    scales.add_argument("--E1", type=float, required=True, help="modulus of body 1 [Pa]")
-    scales.add_argument("--nu1", type=float, required=True, help="Poisson's ratio of body 1")
-    scales.add_argument("--E2", type=float, help="modulus of body 2 [Pa] (omit: rigid)")
-    scales.add_argument("--nu2", type=float, help="Poisson's ratio of body 2")
-    _physical_arguments(scales)
+    add_physical_arguments(scales)
     scales.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
     curve = commands.add_parser("curve", help="approach + retraction: events and curves")
     curve.add_argument("--mu", type=float,
                        help="Tabor parameter (substrate E*); or the physical inputs below")
-    curve.add_argument("--E-star", dest="E_star", type=float,
-                       help="effective modulus [Pa] (or --E1 --nu1 [--E2 --nu2])")
-    curve.add_argument("--E1", type=float, help="modulus of the half-space [Pa]")
-    curve.add_argument("--nu1", type=float, help="Poisson's ratio of the half-space")
-    curve.add_argument("--E2", type=float, help="modulus of the sphere [Pa] (omit: rigid)")
-    curve.add_argument("--nu2", type=float, help="Poisson's ratio of the sphere")
-    _physical_arguments(curve)
+    add_physical_arguments(curve)
     curve.add_argument("--profile", choices=("sphere", "derjaguin"),
                        help="the sphere's exact gap, or Derjaguin's parabola (the paper's; "
                             "results then depend on mu alone). Default with physical inputs: "
@@ -74,9 +65,13 @@ def build_parser():
                        help="instead of a preset: refine from draft until P_max and P_off "
                             "change by at most this (relative) between two levels")
     curve.add_argument("--layer-thickness", type=float,
-                       help="layer thickness t / sqrt(R eps) (omit: homogeneous half-space)")
-    curve.add_argument("--layer-modulus-ratio", type=float, default=1.0,
+                       help="layer thickness: in m with physical inputs, else t / sqrt(R eps) "
+                            "(omit: homogeneous half-space)")
+    curve.add_argument("--layer-modulus-ratio", type=float,
                        help="E*_layer / E*_substrate (default: 1)")
+    curve.add_argument("--layer-E", dest="layer_E", type=float,
+                       help="layer's Young's modulus [Pa] (physical inputs; with --layer-nu, "
+                            "instead of --layer-modulus-ratio; the sphere must be rigid)")
     curve.add_argument("--nu", type=float,
                        help="substrate Poisson's ratio (default: --nu1, else 0.3)")
     curve.add_argument("--layer-nu", type=float, help="layer Poisson's ratio (default: --nu)")
@@ -97,10 +92,15 @@ def build_parser():
 
     sweep = commands.add_parser("sweep", help="curves over mu, in parallel, into events.csv "
                                               "and curves.csv (resumable)")
-    which = sweep.add_mutually_exclusive_group(required=True)
+    which = sweep.add_mutually_exclusive_group()
     which.add_argument("--mu", type=float, nargs="+", help="Tabor parameters, > 0")
     which.add_argument("--mu-range", type=float, nargs=3, metavar=("LO", "HI", "N"),
                        help="N values from LO to HI, evenly spaced in log mu")
+    physical = sweep.add_argument_group(
+        "physical inputs", f"instead of --mu: {USAGE}, each with one or more values (those with "
+        "several are swept together; events.csv gains SI columns). The curves use the paper's "
+        "Derjaguin profile, whose pull-off error is about 1.6 eps/R")
+    add_physical_arguments(physical, several=True)
     sweep.add_argument("--method", choices=METHODS, default="fem",
                        help="solver of each curve (default: %(default)s)")
     sweep.add_argument("--accuracy", choices=tuple(PRESETS), default="default",
@@ -122,34 +122,36 @@ def build_parser():
                        help="resolution of each curve (default: %(default)s)")
     onset.add_argument("--bracket", type=float, nargs=2, default=(0.3, 1.0), metavar=("LO", "HI"),
                        help="mu without and with a jump-in (default: 0.3 1.0)")
+    physical = onset.add_argument_group(
+        "physical inputs", f"optional ({USAGE}): whether this contact jumps in, and the value of "
+        "each input (the others held) at which it starts to")
+    add_physical_arguments(physical)
     onset.add_argument("--json", action="store_true", help="print JSON instead of a table")
     return parser
 
 
 def _laws(args, parser):
-    physical = (args.E_star, args.dgamma, args.eps, args.R)
-    if (args.mu is not None) == any(v is not None for v in physical):
-        parser.error("laws: give either --mu or all of --E-star, --dgamma, --eps, --R")
-    if args.mu is None:
-        if None in physical:
-            parser.error("laws: --E-star, --dgamma, --eps and --R go together")
-        mu = Scales(E_star=args.E_star, dgamma=args.dgamma, eps=args.eps, R=args.R).mu
-        mus = [mu]
-    else:
-        mus = args.mu
-    rows = PAPER_LAWS.events(mus).records()
+    if (args.mu is None) != physical_given(args):
+        parser.error(f"laws: give either --mu or the physical inputs ({USAGE})")
+    scales = physical_scales(args, parser.error, "laws")
+    rows = PAPER_LAWS.events([scales.mu] if scales else args.mu).records()
+    si_columns = ()
+    if scales is not None:
+        for row in rows:
+            row["si"] = scales.to_si(row)
+        si_columns = tuple(scales.si_columns(rows[0]))
     if args.json:
         dump_json(rows)  # a list, one object per mu, whatever their number
     else:
         print(LAWS_LEGEND)
-        print_table(rows, EVENT_COLUMNS)
+        print_table([row | (scales.si_columns(row) if scales else {}) for row in rows],
+                    EVENT_COLUMNS + si_columns)
 
 
 def _scales(args, parser):
-    if None in (args.dgamma, args.eps, args.R):
-        parser.error("scales: --dgamma, --eps and --R are required")
-    E_star = effective_modulus(E1=args.E1, nu1=args.nu1, E2=args.E2, nu2=args.nu2)
-    s = Scales(E_star=E_star, dgamma=args.dgamma, eps=args.eps, R=args.R)
+    s = physical_scales(args, parser.error, "scales")
+    if s is None:
+        parser.error(f"scales: give the physical inputs ({USAGE})")
     row = {"E_star": s.E_star, "mu": s.mu, "R_over_eps": s.R / s.eps, "length_z": s.length_z,
            "length_r": s.length_r, "force": s.force, "area": s.area, "traction": s.traction}
     if args.json:
@@ -164,7 +166,6 @@ def _scales(args, parser):
 
 def _curve(args, parser):
     from .plumbing.errors import ContinuationError
-    from .solids.fe import Solid
     from .solver.output import write_all
     from .solver.solve import solve_curve, solve_to_tolerance
 
@@ -173,13 +174,7 @@ def _curve(args, parser):
         writable_folder(args.out, "--out")  # before solving
     if args.spring_constant is not None and args.tolerance is not None:
         parser.error("curve: --spring-constant takes a preset (--accuracy), not --tolerance")
-    if args.layer_thickness is None and (args.layer_modulus_ratio != 1.0
-                                         or args.layer_nu is not None):
-        parser.error("curve: --layer-modulus-ratio and --layer-nu need --layer-thickness")
-    nu = next(v for v in (args.nu, args.nu1, 0.3) if v is not None)
-    solid = Solid(nu=nu, layer_thickness=args.layer_thickness,
-                  layer_modulus_ratio=args.layer_modulus_ratio,
-                  layer_nu=nu if args.layer_nu is None else args.layer_nu)
+    solid = _solid(args, parser, scales)
     spring = args.spring_constant
     if spring is not None and scales is not None:  # N/m → 2πRΔγ/ε
         spring = positive("--spring-constant", spring, unit="N/m") * scales.eps / scales.force
@@ -202,11 +197,11 @@ def _curve(args, parser):
     if result.status != "ok":
         print(f"warning: {result.message}", file=sys.stderr)
     if args.out:
-        write_all(result, args.out)
+        write_all(result, args.out, scales=scales)
     row = result.records()
     if scales is not None:
         row["si"] = {**scales.to_si(row), "error_estimate": scales.to_si(
-            row["error_estimate"] or {}), "scales": _scale_row(scales)}
+            row["error_estimate"] or {}), "scales": scale_record(scales)}
     if args.json:
         dump_json(row)
     else:
@@ -226,57 +221,68 @@ def _curve(args, parser):
 
 def _curve_inputs(args, parser):
     """(μ, `Scales` or None, R/ε of the exact sphere or None) of `curve`: --mu, or the physical
-    inputs (E* or the two bodies' E and ν, Δγ, ε, R), never both."""
-    bodies = (args.E1, args.nu1, args.E2, args.nu2)
-    physical = (args.E_star, *bodies, args.dgamma, args.eps, args.R)
-    if (args.mu is None) == all(v is None for v in physical):
-        parser.error("curve: give either --mu or the physical inputs (--E-star or --E1 --nu1 "
-                     "[--E2 --nu2], and --dgamma, --eps, --R)")
+    inputs, never both."""
+    if (args.mu is None) != physical_given(args):
+        parser.error(f"curve: give either --mu or the physical inputs ({USAGE})")
     if args.mu is not None:
         if args.profile == "sphere":
             parser.error("curve: --profile sphere needs R/eps: give the physical inputs "
                          "instead of --mu")
         return args.mu, None, None
-    if (args.E_star is None) == (args.E1 is None):
-        parser.error("curve: give --E-star or --E1 --nu1 [--E2 --nu2], one of the two")
-    if None in (args.dgamma, args.eps, args.R) or (args.E1 is not None and args.nu1 is None):
-        parser.error("curve: the physical inputs need --dgamma, --eps, --R and E* (--E-star, "
-                     "or --E1 with --nu1)")
-    if args.E_star is not None and any(v is not None for v in bodies):
-        parser.error("curve: --E-star and --E1/--nu1/--E2/--nu2 are alternatives")
-    E_star = args.E_star
-    if E_star is None:
-        E_star = effective_modulus(E1=args.E1, nu1=args.nu1, E2=args.E2, nu2=args.nu2)
     sphere = args.profile != "derjaguin"
     with warnings.catch_warnings():
         if sphere:  # the Derjaguin warning is moot: the exact sphere is solved
             warnings.simplefilter("ignore", DerjaguinWarning)
-        scales = Scales(E_star=E_star, dgamma=args.dgamma, eps=args.eps, R=args.R)
+        scales = physical_scales(args, parser.error, "curve")
     return scales.mu, scales, (scales.R / scales.eps if sphere else None)
 
 
-def _scale_row(scales):
-    """The scales of a physical curve, SI (and μ, R/ε)."""
-    return {"mu": scales.mu, "R_over_eps": scales.R / scales.eps, "E_star": scales.E_star,
-            "force": scales.force, "length_z": scales.length_z, "length_r": scales.length_r}
+def _solid(args, parser, scales):
+    """The `Solid` of `curve`: the layer's thickness in √(Rε) (converted from m with physical
+    inputs), its modulus ratio (given, or from --layer-E and --layer-nu against the substrate's
+    E*) and the Poisson's ratios."""
+    from .solids.fe import Solid
+
+    layered = (args.layer_modulus_ratio, args.layer_nu, args.layer_E)
+    if args.layer_thickness is None and any(v is not None for v in layered):
+        parser.error("curve: --layer-modulus-ratio, --layer-E and --layer-nu need "
+                     "--layer-thickness")
+    nu = next(v for v in (args.nu, args.nu1, 0.3) if v is not None)
+    layer_nu = nu if args.layer_nu is None else args.layer_nu
+    thickness, ratio = args.layer_thickness, args.layer_modulus_ratio
+    if args.layer_E is not None:
+        if scales is None or ratio is not None:
+            parser.error("curve: --layer-E goes with the physical inputs, instead of "
+                         "--layer-modulus-ratio")
+        if args.E2 is not None:
+            parser.error("curve: a layer needs a rigid sphere (no --E2): E* lumps the sphere's "
+                         "compliance into a homogeneous half-space only")
+        layer_e_star = positive("--layer-E", args.layer_E, unit="Pa") / (1.0 - layer_nu**2)
+        ratio = layer_e_star / scales.E_star
+    if thickness is not None and scales is not None:  # m → √(Rε)
+        thickness = positive("--layer-thickness", thickness, unit="m") / scales.length_r
+    return Solid(nu=nu, layer_thickness=thickness,
+                 layer_modulus_ratio=1.0 if ratio is None else ratio, layer_nu=layer_nu)
 
 
 def _si_text(key, value):
     """An SI value with its unit for the table ('' where the key has none)."""
-    if value is None:
-        return ""
-    return f"{value:.6g} {'N' if key.startswith('p_') else 'm'}"
+    return "" if value is None else f"{value:.6g} {si_unit(key)}"
 
 
 def _sweep(args, parser):
     from .studies.sweep import mu_range, sweep
 
+    if (args.mu is None and args.mu_range is None) != physical_given(args):
+        parser.error(f"sweep: give one of --mu, --mu-range or the physical inputs ({USAGE})")
+    scales = physical_scales(args, parser.error, "sweep", several=True)
     out = writable_folder(args.out, "--out")  # before solving
-    mus = mu_range(*args.mu_range) if args.mu_range else args.mu
+    mus = ([s.mu for s in scales] if scales else
+           mu_range(*args.mu_range) if args.mu_range else args.mu)
     bar = ProgressBar(f"{args.method.upper()} sweep of {len(mus)} mu", time_left=True)
     result = sweep(mus, method=args.method, accuracy=args.accuracy,
                    error_estimate=not args.no_error_estimate, jobs=args.jobs,
-                   scheduler=args.scheduler, progress=bar)
+                   scheduler=args.scheduler, progress=bar, scales=scales or ())
     bar.close()
     result.write(out)
     print(f"{result.solved} solved, {result.stored} read from the store, {len(result.failed)} "
@@ -288,8 +294,9 @@ def _sweep(args, parser):
     if args.json:
         dump_json(table)
     else:
+        si = ("p_off_N", "delta_oc_m") if scales else ()
         print_table(table, ("mu", "status", "p_max", "p_off", "delta_oc", "a_c", "jump_in",
-                            "x_oc", "p_off_err", "wall_s"))
+                            "x_oc", "p_off_err", "wall_s") + si)
     return 1 if result.failed else 0
 
 
@@ -297,16 +304,30 @@ def _onset(args, parser):
     from .plumbing.errors import ContinuationError
     from .studies.onset import jump_in_onset
 
+    scales = physical_scales(args, parser.error, "onset")
     try:
         row = jump_in_onset(method=args.method, accuracy=args.accuracy,
                             bracket=tuple(args.bracket)).records()
     except ContinuationError as exc:
         print(f"{PROG}: continuation failed: {exc}", file=sys.stderr)
         return 1
+    if scales is not None:
+        critical = scales.at_mu(row["mu_onset"])
+        row["si"] = {"mu": scales.mu, "jumps_in": scales.mu > row["mu_onset"],
+                     "E_star_max": critical["E_star"], "R_min": critical["R"],
+                     "dgamma_min": critical["dgamma"], "eps_max": critical["eps"]}
     if args.json:
         dump_json(row)
     else:
-        print_table([{"quantity": k, "value": v} for k, v in row.items()], ("quantity", "value"))
+        units = {"E_star_max": "Pa", "R_min": "m", "dgamma_min": "J/m^2", "eps_max": "m"}
+        rows = [{"quantity": k, "value": v, "unit": ""} for k, v in row.items() if k != "si"]
+        rows += [{"quantity": k, "value": v, "unit": units.get(k, "")}
+                 for k, v in row.get("si", {}).items()]
+        print_table(rows, ("quantity", "value", "unit"))
+        if scales is not None:
+            print("this contact (mu = si.mu) jumps in under displacement control iff mu > "
+                  "mu_onset; each *_min/*_max is the input at which it starts to, the others "
+                  "held")
     return 0
 
 

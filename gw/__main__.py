@@ -10,7 +10,12 @@ from functools import partial
 
 import numpy as np
 
-from fem_asperity.closed_forms.scales import Scales
+from fem_asperity.closed_forms.physical_arguments import (
+    USAGE,
+    add_physical_arguments,
+    physical_given,
+    physical_scales,
+)
 from fem_asperity.plumbing.checks import in_range
 from fem_asperity.plumbing.cli import Parser, ProgressBar, dump_json, print_table, run
 from fem_asperity.solver.presets import PRESETS
@@ -31,16 +36,12 @@ def _common(parser):
     parser.add_argument("--zeta", type=float, help="sigma / eps")
     parser.add_argument("--omega", type=float, help="sigma_s / sigma (default 1, or eq. 20)")
     parser.add_argument("--sigma-r-eta", type=float, help="sigma R eta: omega from eq. 20")
-    parser.add_argument("--sigma", type=float, help="rms roughness [m] (physical inputs)")
-    parser.add_argument("--eps", type=float, help="LJ equilibrium spacing [m]")
-    # The names of `python -m fem_asperity`; gw's earlier spellings stay as aliases.
-    parser.add_argument("--R", "--radius", dest="radius", type=float,
-                        help="asperity radius R [m] (alias --radius)")
-    parser.add_argument("--density", type=float, help="asperity density eta [1/m^2]")
-    parser.add_argument("--E-star", "--estar", dest="estar", type=float,
-                        help="effective modulus E* [Pa] (alias --estar)")
-    parser.add_argument("--dgamma", "--work-of-adhesion", dest="work_of_adhesion", type=float,
-                        help="work of adhesion [J/m^2] (alias --work-of-adhesion)")
+    physical = parser.add_argument_group(
+        "physical inputs", f"instead of --mu --zeta --omega: --sigma, --density and {USAGE} "
+        "(aliases --estar, --work-of-adhesion, --radius); the outputs gain SI values")
+    physical.add_argument("--sigma", type=float, help="rms roughness [m]")
+    physical.add_argument("--density", type=float, help="asperity density eta [1/m^2]")
+    add_physical_arguments(physical)
     parser.add_argument("--law", choices=("paper", "refit", "fem", "bem"), default="paper",
                         help="paper: the paper's closed forms; refit: the same forms with the "
                              "constants refitted from BEM curves (stored); fem, bem: the approach "
@@ -72,25 +73,23 @@ def build_parser():
 
 
 def _inputs(args, parser):
-    """(mu, RoughSurface) from either dimensionless or physical arguments."""
-    physical = (args.sigma, args.eps, args.radius, args.density, args.estar,
-                args.work_of_adhesion)
-    if any(v is not None for v in physical):
+    """(mu, RoughSurface, Scales or None) from either dimensionless or physical arguments."""
+    if physical_given(args) or args.sigma is not None or args.density is not None:
         dimensionless = (args.mu, args.zeta, args.omega, args.sigma_r_eta)
-        if None in physical or any(v is not None for v in dimensionless):
-            parser.error("physical inputs need all of --sigma --eps --R --density --E-star "
-                         "--dgamma, and none of --mu --zeta --omega --sigma-r-eta "
-                         "(they follow from the physical inputs: omega from eq. 20)")
-        mu = Scales(E_star=args.estar, dgamma=args.work_of_adhesion, eps=args.eps,
-                    R=args.radius).mu
-        return mu, RoughSurface.from_physical(sigma=args.sigma, radius=args.radius,
-                                              density=args.density, eps=args.eps)
+        if None in (args.sigma, args.density) or any(v is not None for v in dimensionless):
+            parser.error(f"physical inputs need --sigma, --density and {USAGE}, and none of "
+                         "--mu --zeta --omega --sigma-r-eta (they follow from the physical "
+                         "inputs: omega from eq. 20)")
+        scales = physical_scales(args, parser.error, args.command)
+        surface = RoughSurface.from_physical(sigma=args.sigma, radius=scales.R,
+                                             density=args.density, eps=scales.eps)
+        return scales.mu, surface, scales
     if args.mu is None or args.zeta is None:
         parser.error("give --mu and --zeta (or the physical inputs)")
     if args.omega is not None and args.sigma_r_eta is not None:
         parser.error("give --omega or --sigma-r-eta, not both")
     omega = args.omega if args.sigma_r_eta is None else float(omega_mccool(args.sigma_r_eta))
-    return args.mu, RoughSurface(zeta=args.zeta, omega=1.0 if omega is None else omega)
+    return args.mu, RoughSurface(zeta=args.zeta, omega=1.0 if omega is None else omega), None
 
 
 def _law(args, mu):
@@ -106,12 +105,16 @@ def _law(args, mu):
     return law
 
 
-def _pressure_scale(args):
-    """2πRΔγη [Pa]: F̄ = F/(2πR A₀ Δγ η), so the force per nominal area A₀ is F̄ times this."""
-    return 2.0 * np.pi * args.radius * args.work_of_adhesion * args.density
+def _si(scales, args, d, force, area=None):
+    """The GW outputs in SI: d̃ → d [m]; F̄ = F/(2πR A₀ Δγ η) → F/A₀ [Pa] (force per nominal
+    area A₀); S̄ = S/(R A₀ η ε) → S/A₀, the real contact area per nominal area."""
+    si = {"d_m": d * args.sigma, "F_Pa": force * scales.force * args.density}
+    if area is not None:
+        si["S_per_A0"] = area * scales.R * args.density * scales.eps
+    return si
 
 
-def _compare(args, parser, mu, surface):
+def _compare(args, parser, mu, surface, scales):
     """`fmax --compare`: F̄max and its d̃ from the paper's law, the refitted law and the solved law,
     their differences relative to the solved one, and a warning where the paper's is off by more
     than --warn-above."""
@@ -127,6 +130,10 @@ def _compare(args, parser, mu, surface):
     rows = {name: {"f_max": s.f_max, "d_at_max": s.d_at_max,
                    "relative_to_solved": (s.f_max - solved) / solved}
             for name, s in found.items()}
+    if scales is not None:  # physical inputs: the strength [Pa] and its d [m] too
+        for name, row in rows.items():
+            si = _si(scales, args, found[name].d_at_max, found[name].f_max)
+            row["si"] = {"strength": si["F_Pa"], "d_at_max": si["d_m"]}
     rows["solved"]["interpolation_error"] = laws["solved"].interpolation_error
     rows["solved"]["method"] = method
     off = rows["paper"]["relative_to_solved"]
@@ -136,10 +143,15 @@ def _compare(args, parser, mu, surface):
     if args.json:
         dump_json(out)
     else:
+        si = ("strength_Pa", "d_at_max_m") if scales is not None else ()
         print_table([{"law": name, "interpolation_error": None,
-                      **{k: v for k, v in row.items() if k != "method"}}
+                      **{k: v for k, v in row.items() if k not in ("method", "si")},
+                      **({f"{k}_{u}": row["si"][k] for k, u in (("strength", "Pa"),
+                                                                 ("d_at_max", "m"))}
+                         if si else {})}
                      for name, row in rows.items()],
-                    ("law", "f_max", "d_at_max", "relative_to_solved", "interpolation_error"))
+                    ("law", "f_max", "d_at_max", "relative_to_solved", "interpolation_error")
+                    + si)
     if warning:
         print(f"warning: {warning}", file=sys.stderr)
     return 0
@@ -153,34 +165,40 @@ def _with_law(args, law):
 def main(argv=None):
     parser = build_parser()
     args = parser.parse_args(argv)
-    mu, surface = _inputs(args, parser)
+    mu, surface, scales = _inputs(args, parser)
     if args.command == "fmax" and args.warn_above != COMPARE_WARNING and not args.compare:
         parser.error("fmax: --warn-above needs --compare")
     if args.command == "fmax" and args.compare:
-        return _compare(args, parser, mu, surface)
+        return _compare(args, parser, mu, surface, scales)
     law = _law(args, mu)
     head = {"mu": mu, "zeta": surface.zeta, "omega": surface.omega, "law": args.law}
     if args.command == "fmax":
         found = strength(law, surface)
         row = head | {"f_max": found.f_max, "d_at_max": found.d_at_max}
-        if args.sigma is not None:  # physical inputs: the same in SI
-            row["si"] = {"strength": found.f_max * _pressure_scale(args),
-                         "d_at_max": found.d_at_max * args.sigma}
+        if scales is not None:  # physical inputs: the same in SI
+            si = _si(scales, args, found.d_at_max, found.f_max)
+            row["si"] = {"strength": si["F_Pa"], "d_at_max": si["d_m"]}
         if args.json:
             dump_json(row)
         else:
-            print_table([{"quantity": k, "value": v} for k, v in row.items()],
-                        ("quantity", "value"))
+            si = {"strength [Pa]": row["si"]["strength"],
+                  "d_at_max [m]": row["si"]["d_at_max"]} if scales is not None else {}
+            print_table([{"quantity": k, "value": v} for k, v in (row | si).items()
+                         if k != "si"], ("quantity", "value"))
         return 0
     if args.points < 2:
         parser.error("curve: --points must be at least 2")
     lo, hi = separation_range(law, surface) if args.d is None else args.d
     d = np.linspace(lo, hi, args.points)
     force, area = totals(law, surface, d)
+    columns = {"d": d, "F": force, "S": area}
+    if scales is not None:
+        columns |= _si(scales, args, d, force, area)
     if args.json:
-        dump_json(head | {"d": d.tolist(), "F": force.tolist(), "S": area.tolist()})
+        si = {"si": {k: v.tolist() for k, v in columns.items() if k not in "dFS"}} if scales else {}
+        dump_json(head | {k: columns[k].tolist() for k in "dFS"} | si)
     else:
-        print_table([{"d": a, "F": b, "S": c} for a, b, c in zip(d, force, area)], ("d", "F", "S"))
+        print_table([dict(zip(columns, row)) for row in zip(*columns.values())], tuple(columns))
     return 0
 
 

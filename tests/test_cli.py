@@ -6,6 +6,7 @@ import os
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 from fem_asperity import __version__
@@ -175,7 +176,10 @@ def test_curve_json_files_and_progress(tmp_path):
     import meshio
 
     fields = meshio.read(out / "fields_p_max.vtu")
-    assert fields.point_data["u"].shape[1] == 3 and "sigma_zz" in fields.cell_data
+    # --mu: the Derjaguin problem has no R/ε, so the displacement stays in ε, said in its name
+    assert fields.point_data["u [eps]"].shape[1] == 3
+    assert {"sigma_rr [dgamma/eps]", "sigma_rz [dgamma/eps]"} <= set(fields.cell_data)
+    assert fields.field_data["mu"][0] == 1.5
 
 
 @pytest.mark.parametrize("args", [
@@ -198,6 +202,26 @@ def test_curve_json_files_and_progress(tmp_path):
      "1e-6"],
     ["curve", "--E-star", "1e11", "--dgamma", "0.05", "--eps", "3e-10", "--R", "1e-9"],
     ["curve", "--mu", "1", "--profile", "sphere"],
+    # layers in SI: --layer-E needs physical inputs, a rigid sphere, and not the ratio too
+    ["curve", "--mu", "1", "--layer-thickness", "1", "--layer-E", "1e9"],
+    ["curve", "--E1", "1e11", "--nu1", "0.3", "--E2", "1e11", "--nu2", "0.3", "--dgamma", "0.05",
+     "--eps", "3e-10", "--R", "1e-6", "--layer-thickness", "1e-9", "--layer-E", "1e9"],
+    ["curve", "--E-star", "1e11", "--dgamma", "0.05", "--eps", "3e-10", "--R", "1e-6",
+     "--layer-thickness", "1e-9", "--layer-E", "1e9", "--layer-modulus-ratio", "0.1"],
+    ["curve", "--E-star", "1e11", "--dgamma", "0.05", "--eps", "3e-10", "--R", "1e-6",
+     "--layer-thickness", "-1e-9"],
+    ["curve", "--E-star", "1e11", "--dgamma", "0.05", "--eps", "3e-10", "--R", "1e-6",
+     "--layer-E", "1e9"],
+    # the other commands' physical inputs
+    ["sweep", "--out", "x", "--mu", "1", "--E-star", "1e11", "--dgamma", "0.05", "--eps",
+     "3e-10", "--R", "1e-6"],
+    ["sweep", "--out", "x", "--E-star", "1e11", "2e11", "--dgamma", "0.05", "0.1", "0.2",
+     "--eps", "3e-10", "--R", "1e-6"],
+    ["sweep", "--out", "x", "--E-star", "1e11", "--dgamma", "0.05", "--R", "1e-6"],
+    ["onset", "--E-star", "1e11", "--dgamma", "0.05"],
+    ["scales", "--E1", "1e11", "--dgamma", "0.05", "--eps", "3e-10", "--R", "1e-6"],
+    ["laws", "--E-star", "1e11", "--E1", "1e11", "--nu1", "0.3", "--dgamma", "0.05", "--eps",
+     "3e-10", "--R", "1e-6"],
 ])
 def test_curve_bad_input_is_one_line_exit_2(args):
     done = cli("fem_asperity", *args)
@@ -227,6 +251,78 @@ def test_curve_in_si_matches_the_scales_and_bradley():
     assert si["a_c"] == pytest.approx(row["a_c"] * (R * eps) ** 0.5, rel=1e-12)
     assert si["p_off"] == pytest.approx(-force, rel=1e-3)
     assert si["scales"]["force"] == pytest.approx(force, rel=1e-12)
+
+
+def test_laws_in_si_reach_jkr_and_bradley():
+    """laws with physical inputs: SI columns equal the dimensionless ones times 2πRΔγ, ε and
+    √(Rε); a compliant contact (μ ≈ 100) pulls off at JKR's −(3/2)πRΔγ within 2 % (the paper's
+    eq. 10 tends to −3/4 2πRΔγ) and a stiff one (μ ≈ 0.01) at Bradley's −2πRΔγ within 2 %
+    (eq. 7 at μ → 0)."""
+    dgamma, eps, R = 0.05, 3e-10, 1e-6
+    force = 2 * np.pi * R * dgamma
+    for E_star, expected in ((3.5e7, -0.75 * force), (3.5e11, -force)):
+        done = cli("fem_asperity", "laws", "--E-star", str(E_star), "--dgamma", str(dgamma),
+                   "--eps", str(eps), "--R", str(R), "--json")
+        assert done.returncode == 0, done.stderr
+        (row,) = json.loads(done.stdout)
+        assert row["si"]["p_max"] == pytest.approx(row["p_max"] * force, rel=1e-12)
+        assert row["si"]["a_c"] == pytest.approx(row["a_c"] * np.sqrt(R * eps), rel=1e-12)
+        assert row["si"]["delta_oc"] == pytest.approx(row["delta_oc"] * eps, rel=1e-12)
+        assert row["si"]["p_max"] == pytest.approx(expected, rel=2e-2)
+    table = cli("fem_asperity", "laws", "--E1", "160e9", "--nu1", "0.22", "--dgamma", "0.1",
+                "--eps", "3e-10", "--R", "4e-7")
+    assert table.returncode == 0 and "p_max_N" in table.stdout and "a_c_m" in table.stdout
+
+
+def test_sweep_with_physical_inputs_adds_si_columns(tmp_path, monkeypatch):
+    """sweep over E* with Δγ, ε, R held: each row's μ from its inputs and SI columns equal the
+    dimensionless events times the scales; sweep.json gives their units."""
+    monkeypatch.setenv("ADHESION_CACHE", str(tmp_path / "store"))
+    dgamma, eps, R = 0.05, 3e-10, 1e-6
+    done = cli("fem_asperity", "sweep", "--E-star", "5e10", "1e11", "--dgamma", str(dgamma),
+               "--eps", str(eps), "--R", str(R), "--method", "bem", "--accuracy", "draft",
+               "--out", str(tmp_path / "out"), "--json")
+    assert done.returncode == 0, done.stderr
+    rows = json.loads(done.stdout)
+    for row, E_star in zip(rows, (1e11, 5e10)):  # by increasing μ
+        assert row["E_star"] == E_star
+        assert row["mu"] == pytest.approx((R * dgamma**2 / (E_star**2 * eps**3)) ** (1 / 3),
+                                          rel=1e-9)
+        assert row["p_off_N"] == pytest.approx(row["p_off"] * 2 * np.pi * R * dgamma, rel=1e-12)
+        assert row["delta_oc_m"] == pytest.approx(row["delta_oc"] * eps, rel=1e-12)
+        assert row["p_off_err_N"] == pytest.approx(row["p_off_err"] * 2 * np.pi * R * dgamma)
+    units = json.loads((tmp_path / "out" / "sweep.json").read_text())["units"]["events"]
+    assert units["p_off_N"] == "N" and units["a_c_m"] == "m" and units["E_star"] == "Pa"
+    header = (tmp_path / "out" / "events.csv").read_text().splitlines()[0].split(",")
+    assert {"E_star", "p_max_N", "a_c_err_m"} <= set(header)
+
+
+def test_layer_in_metres_and_fields_in_si(tmp_path):
+    """With physical inputs the layer's thickness is in m and its E, ν give the modulus ratio
+    E*_layer/E*_substrate; the VTU holds coordinates and displacements in m, the stress tensor in
+    Pa and the material of each element."""
+    import meshio
+
+    E1, nu1, El, nul, t, R, eps = 3e9, 0.35, 1e9, 0.4, 5e-9, 2e-8, 3e-10
+    done = cli("fem_asperity", "curve", "--E1", str(E1), "--nu1", str(nu1), "--dgamma", "0.05",
+               "--eps", str(eps), "--R", str(R), "--layer-thickness", str(t), "--layer-E",
+               str(El), "--layer-nu", str(nul), "--accuracy", "draft", "--no-error-estimate",
+               "--json", "--out", str(tmp_path))
+    assert done.returncode == 0, done.stderr
+    solid = json.loads(done.stdout)["inputs"]["solid"]
+    assert solid["layer_thickness"] == pytest.approx(t / np.sqrt(R * eps), rel=1e-12)
+    assert solid["layer_modulus_ratio"] == pytest.approx(
+        El / (1 - nul**2) / (E1 / (1 - nu1**2)), rel=1e-12)
+    assert solid["nu"] == nu1 and solid["layer_nu"] == nul
+    fields = meshio.read(tmp_path / "fields_p_off.vtu")
+    material = fields.cell_data["material (0 substrate, 1 layer)"][0]
+    depth = -fields.points[:, 1][fields.cells[0].data].mean(axis=1)  # element centroids, m
+    assert set(material[depth < 0.9 * t]) == {1} and set(material[depth > 1.1 * t]) == {0}
+    u = fields.point_data["u [m]"]
+    assert 0.1 * eps < np.abs(u[:, 1]).max() < 10 * eps  # displacements of order ε, in m
+    assert {"sigma_rr [Pa]", "sigma_zz [Pa]", "sigma_tt [Pa]", "sigma_rz [Pa]"} <= set(
+        fields.cell_data)
+    assert fields.field_data["p [2 pi R dgamma]"][0] < 0
 
 
 @pytest.mark.parametrize("args, says", [
@@ -262,13 +358,26 @@ def test_curve_bem_json_and_files(tmp_path):
     assert any(row.split(",")[5] == "0" for row in rows)  # the unstable branch is in it
 
 
-def test_onset_json():
-    done = cli("fem_asperity", "onset", "--accuracy", "draft", "--json")
+def test_onset_json_with_physical_inputs():
+    """The onset, and for a physical contact whether it jumps in and, for each input with the
+    others held, the value at which it starts to: each of those puts μ at the onset (eq. 1)."""
+    E_star, dgamma, eps, R = 5e9, 0.05, 3e-10, 1e-6
+    done = cli("fem_asperity", "onset", "--accuracy", "draft", "--json", "--E-star", str(E_star),
+               "--dgamma", str(dgamma), "--eps", str(eps), "--R", str(R))
     assert done.returncode == 0, done.stderr
     row = json.loads(done.stdout)
-    assert set(row) == {"mu_onset", "lo", "hi", "method", "accuracy", "evaluations", "wall_s"}
+    assert set(row) == {"mu_onset", "lo", "hi", "method", "accuracy", "evaluations", "wall_s",
+                        "si"}
     assert row["lo"] <= row["mu_onset"] <= row["hi"] and row["hi"] - row["lo"] <= 0.01
     assert 0.69 < row["mu_onset"] < 0.705  # FE fold margins change sign between 0.69 and 0.70
+    si, mu = row["si"], (R * dgamma**2 / (E_star**2 * eps**3)) ** (1 / 3)
+    assert si["mu"] == pytest.approx(mu, rel=1e-12) and si["jumps_in"] is (mu > row["mu_onset"])
+    for at in ({"E_star": si["E_star_max"]}, {"R": si["R_min"]}, {"dgamma": si["dgamma_min"]},
+               {"eps": si["eps_max"]}):
+        inputs = {"E_star": E_star, "dgamma": dgamma, "eps": eps, "R": R} | at
+        mu_at = (inputs["R"] * inputs["dgamma"]**2
+                 / (inputs["E_star"]**2 * inputs["eps"]**3)) ** (1 / 3)
+        assert mu_at == pytest.approx(row["mu_onset"], rel=1e-12)
 
 
 def test_a_curve_the_solver_cannot_follow_is_one_line_exit_1(capsys):

@@ -224,6 +224,29 @@ def test_physical_inputs_take_the_names_of_fem_asperity_and_the_old_ones(capsys)
     assert answers[0] == answers[1] and answers[0]["f_max"] > 0
 
 
+def test_curve_in_si_and_the_two_bodies(capsys):
+    """`gw curve` with physical inputs: d in m (d̃σ), F/A₀ in Pa (F̄ · 2πRΔγη) and the real
+    contact area per nominal area (S̄ · Rηε); E1, ν1 of a body on a rigid one give the same as
+    their E* = E1/(1 − ν1²)."""
+    import json
+
+    from gw.__main__ import main
+
+    sigma, density, R, dgamma, eps = 2e-9, 2e13, 1e-6, 0.05, 3e-10
+    common = ["curve", "--sigma", str(sigma), "--density", str(density), "--eps", str(eps),
+              "--R", str(R), "--dgamma", str(dgamma), "--points", "5", "--json"]
+    outputs = []
+    for modulus in (["--E-star", str(1e9 / (1 - 0.3**2))], ["--E1", "1e9", "--nu1", "0.3"]):
+        assert main(common + modulus) == 0
+        outputs.append(json.loads(capsys.readouterr().out))
+    row = outputs[0]
+    assert outputs[1]["F"] == pytest.approx(row["F"], rel=1e-12)
+    si, d, F, S = row["si"], *(np.array(row[k]) for k in "dFS")
+    assert si["d_m"] == pytest.approx(d * sigma, rel=1e-12)
+    assert si["F_Pa"] == pytest.approx(F * 2 * np.pi * R * dgamma * density, rel=1e-12)
+    assert si["S_per_A0"] == pytest.approx(S * R * density * eps, rel=1e-12)
+
+
 def test_compare_puts_the_three_laws_side_by_side_and_warns(capsys, tmp_path, monkeypatch):
     """`fmax --compare`: paper, refit and solved F̄max with their differences from the solved one;
     the paper's equals plain `fmax`; the warning appears where the difference exceeds

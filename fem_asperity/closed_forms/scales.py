@@ -118,10 +118,37 @@ class Scales:
 
     def to_si(self, values):
         """The dimensionless event values `values` (key → value, as `Events.records()` or an
-        error estimate) in SI by their key's kind: forces (p_*) in N, separations and gaps
-        (delta_*, x_*, and z_*: a cantilever's far end) in m, contact radii (a_*) in m; other
-        keys and None values are left out."""
-        scale = {"p": self.force, "delta": self.length_z, "x": self.length_z,
-                 "z": self.length_z, "a": self.length_r}
-        return {key: value * scale[key.split("_")[0]] for key, value in values.items()
-                if key.split("_")[0] in scale and isinstance(value, float)}
+        error estimate) in SI by their key's kind (`si_unit`): forces (p_*) in N, separations
+        and gaps (delta_*, x_*, and z_*: a cantilever's far end) in m, contact radii (a_*) in m;
+        other keys and None values are left out."""
+        scale = {"N": self.force, "m_z": self.length_z, "m_r": self.length_r}
+        return {key: value * scale[_scale_of(key)] for key, value in values.items()
+                if _scale_of(key) and isinstance(value, float)}
+
+    def si_columns(self, values):
+        """`to_si` with each key suffixed by its unit (p_max → p_max_N, a_c → a_c_m): columns
+        that sit next to the dimensionless ones in a table or CSV."""
+        return {f"{key}_{si_unit(key)}": value for key, value in self.to_si(values).items()}
+
+    def at_mu(self, mu):
+        """Each physical input that alone puts this contact at Tabor parameter `mu`, the other
+        three held: {'E_star': Pa, 'R': m, 'dgamma': J/m², 'eps': m}, from eq. (1),
+        μ³ = RΔγ²/(E*²ε³). μ grows with R and Δγ and falls with E* and ε."""
+        cube = positive("mu", mu) ** 3
+        E, g, eps, R = self.E_star, self.dgamma, self.eps, self.R
+        return {"E_star": float(np.sqrt(R * g**2 / (cube * eps**3))),
+                "R": float(cube * E**2 * eps**3 / g**2),
+                "dgamma": float(np.sqrt(cube * E**2 * eps**3 / R)),
+                "eps": float(np.cbrt(R * g**2 / (cube * E**2)))}
+
+
+def _scale_of(key):
+    """Which scale converts the event `key`: 'N' (p_*), 'm_z' (delta_*, x_*, z_*), 'm_r' (a_*),
+    or None."""
+    return {"p": "N", "delta": "m_z", "x": "m_z", "z": "m_z", "a": "m_r"}.get(key.split("_")[0])
+
+
+def si_unit(key):
+    """SI unit of the event `key` ('N' or 'm'), None for keys without one (mu, jump_in)."""
+    kind = _scale_of(key)
+    return kind and kind[0]

@@ -25,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..closed_forms.scales import si_unit
 from ..path.curve import Curve
 from ..plumbing.checks import in_range
 from ..plumbing.cli import format_cell
@@ -54,6 +55,13 @@ EVENT_UNITS = {"p_max": "2 pi R dgamma", "delta_oc": "eps", "delta_o_star": "eps
                "p_jump_after": "2 pi R dgamma", "p_off": "2 pi R dgamma", "delta_off": "eps",
                "delta_jump_out": "eps", "p_jump_out_before": "2 pi R dgamma",
                "p_jump_out_after": "2 pi R dgamma"}
+#: Events and estimates that events.csv also gives in SI (physical inputs), their columns
+#: (`Scales.si_columns`: <key>_N or <key>_m) and the inputs that precede them.
+SI_EVENTS = [key for key in EVENT_UNITS if si_unit(key)] + [
+    f"{key}_err" for key in EVENT_UNITS if si_unit(key)]
+SI_INPUTS = {"E_star": "Pa", "dgamma": "J/m^2", "eps": "m", "R": "m"}
+SI_COLUMNS = list(SI_INPUTS) + [f"{key}_{si_unit(key)}" for key in SI_EVENTS]
+SI_UNITS = SI_INPUTS | {f"{key}_{si_unit(key)}": si_unit(key) for key in SI_EVENTS}
 #: Units of the cost columns.
 COST_UNITS = {**dict.fromkeys(COST_KEYS, "-"), "wall_s": "s (of the solve that stored the curve)"}
 
@@ -87,7 +95,8 @@ class SweepRow:
 class Sweep:
     """The rows of a sweep (by increasing μ) and how they were obtained: method, accuracy,
     whether with the error estimate, how many curves were solved now and how many read from the
-    store, and the wall time."""
+    store, and the wall time. `scales`: the physical inputs (`Scales`) of the μ that came from
+    them; their rows gain the inputs and every event in SI."""
 
     method: str
     accuracy: str
@@ -96,6 +105,7 @@ class Sweep:
     solved: int
     stored: int
     wall_s: float
+    scales: tuple = ()
 
     @property
     def failed(self):
@@ -103,8 +113,20 @@ class Sweep:
         return [row for row in self.rows if row.curve is None]
 
     def events_table(self):
-        """events.csv as a list of dicts, one per μ."""
-        return [row.events_row() for row in self.rows]
+        """events.csv as a list of dicts, one per μ; with `scales`, each row continues with the
+        physical inputs and every event and estimate in SI (p_max_N, p_max_err_N, a_c_m, ...)."""
+        by_mu = {mu_key(s.mu): s for s in self.scales}
+        table = []
+        for row in self.rows:
+            events = row.events_row()
+            if self.scales:
+                scales, si = by_mu.get(row.mu), {}
+                if scales:
+                    si = {k: getattr(scales, k) for k in SI_INPUTS} | scales.si_columns(
+                        {k: events[k] for k in SI_EVENTS})
+                events |= {k: si.get(k) for k in SI_COLUMNS}
+            table.append(events)
+        return table
 
     def curves_table(self):
         """curves.csv as a list of dicts: every point of every approach and retraction."""
@@ -131,8 +153,10 @@ class Sweep:
                 "error_estimate": self.error_estimate, "mu": [row.mu for row in self.rows],
                 "solved": self.solved, "stored": self.stored, "failed": len(self.failed),
                 "wall_s": self.wall_s, "solver_revision": solver_revision(),
-                "version": __version__, "units": {"events": {**EVENT_UNITS, **COST_UNITS},
-                                                  "curves": CURVE_COLUMNS}}
+                "version": __version__,
+                "units": {"events": {**EVENT_UNITS, **COST_UNITS,
+                                     **(SI_UNITS if self.scales else {})},
+                          "curves": CURVE_COLUMNS}}
 
     def write(self, folder):
         """events.csv, curves.csv and sweep.json into `folder`, all or none."""
@@ -240,13 +264,14 @@ def _cluster_jobs(scheduler, todo, args):
 
 
 def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, jobs=None,
-          scheduler=None, cache=None, progress=None):
+          scheduler=None, cache=None, progress=None, scales=()):
     """Solve the curves at every μ of `mus` (those not stored yet) and return the `Sweep`.
 
     method, accuracy, error_estimate: as `solve_curve`. jobs: worker processes on this machine
     (default: one per core); scheduler: address of a Dask scheduler instead ('tcp://host:8786').
     cache: the store's folder (default $ADHESION_CACHE). progress: callable(fraction of the
-    curves to solve that are done), called as each finishes.
+    curves to solve that are done), called as each finishes. scales: the `Scales` the μ came
+    from (physical inputs), for SI columns in the events.
     """
     # μ as the store tells them apart (`mu_key`): μ that share a folder are one μ.
     mus = sorted({mu_key(in_range("mu", m, *MU_RANGE, closed_lo=True))
@@ -284,5 +309,6 @@ def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, jobs=No
         else:
             rows.append(SweepRow(mu, stored[mu].status, stored[mu].message, stored[mu]))
     return Sweep(method, accuracy, error_estimate, tuple(rows), solved=len(todo) - len(failures),
-                 stored=len(mus) - len(todo), wall_s=time.perf_counter() - start)
+                 stored=len(mus) - len(todo), wall_s=time.perf_counter() - start,
+                 scales=tuple(scales))
 
