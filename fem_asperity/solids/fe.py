@@ -135,7 +135,7 @@ class HalfSpace:
     """Assembled elastic model on a mesh from `graded_mesh`, condensed onto the surface.
 
     The `operator.ElasticSurface` interface, and for field output mesh, basis,
-    displacement_field, stress_zz. Attributes after construction:
+    displacement_field, stress. Attributes after construction:
       r_nodes: radii of the surface unknowns (sorted), in √(Rε).
       r_quad, weights: surface quadrature points and weights (r included), in √(Rε) and √(Rε)².
       interp: sparse (n_quad × n_nodes) map from surface values w to w at the quadrature points.
@@ -152,6 +152,7 @@ class HalfSpace:
         in_layer = np.zeros(mesh.t.shape[1], dtype=bool)
         if solid.layer_thickness is not None:
             in_layer[mesh.subdomains["layer"]] = True
+        self.in_layer = in_layer
         lam, shear = solid.lame(in_layer)
         nqp = self.basis.X.shape[1]
         self._lam = np.repeat(lam[:, None], nqp, axis=1)
@@ -236,10 +237,13 @@ class HalfSpace:
         rhs[self._surface_position] = -nodal_load
         return self._solve_free(rhs) + np.sum(nodal_load) * self._far_field
 
-    def stress_zz(self, u):
-        """σ_zz per element (mean over its quadrature points), E* = 1 units."""
+    def stress(self, u):
+        """The axisymmetric stress tensor per element (mean over its quadrature points), E* = 1
+        units: an (n_elements × 4) array of σ_rr, σ_zz, σ_θθ, σ_rz."""
         field = self.basis.interpolate(u)
         r = np.asarray(self.basis.global_coordinates())[0]
-        e_rr, e_zz, e_tt, _ = _strain(field, r)
-        sigma = self._lam * (e_rr + e_zz + e_tt) + 2.0 * self._shear * e_zz
-        return sigma.mean(axis=1)
+        e_rr, e_zz, e_tt, g_rz = _strain(field, r)
+        trace = self._lam * (e_rr + e_zz + e_tt)
+        sigma = (trace + 2.0 * self._shear * e_rr, trace + 2.0 * self._shear * e_zz,
+                 trace + 2.0 * self._shear * e_tt, self._shear * g_rz)
+        return np.column_stack([s.mean(axis=1) for s in sigma])

@@ -1,15 +1,17 @@
 """Files of one curve: CSV curves, a force/contact figure, under load-line control the
 cantilever's deflection against the piezo position, and (FE) VTU + PNG fields at chosen states.
 
-Field units: coordinates r, z in √(Rε); displacement in ε; σ_zz in Δγ/ε (the LJ traction unit,
-so σ_zz ≈ −p̄ on the surface). `write_all` writes all files or none (a staging folder).
+Field units (`field_units`): coordinates and displacements in one length unit, m with physical
+inputs or √(Rε) with the exact sphere (a Derjaguin result has no R/ε: displacements stay in ε,
+named u_eps); stresses in Pa with physical inputs, else Δγ/ε (the LJ traction unit, so
+σ_zz ≈ −p̄ on the surface). `write_all` writes all files or none (a staging folder).
 """
 
 from pathlib import Path
 
 import numpy as np
 
-from ..closed_forms.lj import traction
+from ..closed_forms.lj import scaled_traction
 from ..plumbing.files import atomic_path, save_figure, staged_folder
 from .result import write_curves
 
@@ -71,68 +73,106 @@ def state_index(curve, delta, p):
 
 
 def state_fields(result, index):
-    """(mesh, nodal displacement (n_vertices × 2, in ε), σ_zz per element (Δγ/ε)) at curve point
-    `index` of `result.equilibrium`."""
+    """(mesh, nodal displacement (n_vertices × 2: u_r, u_z, in ε), stress per element
+    (n_elements × 4: σ_rr, σ_zz, σ_θθ, σ_rz, in Δγ/ε)) at curve point `index` of
+    `result.equilibrium`."""
     model = result.model
     surface, half_space = model.surface, model.half_space
     w, delta = model.trace.states[index], result.equilibrium.delta[index]
-    pressure = surface.load_factor * traction(surface.gap(w, delta))
+    pressure = surface.load_factor * scaled_traction(surface.gap(w, delta))  # inf gap: 0
     u = half_space.displacement_field(half_space.nodal_load(pressure))
     nodal = u[half_space.basis.nodal_dofs].T
-    return half_space.mesh, nodal, half_space.stress_zz(u) / surface.load_factor
+    return half_space.mesh, nodal, half_space.stress(u) / surface.load_factor
 
 
-def write_fields(result, folder, label, index):
-    """fields_<label>.vtu (meshio) and fields_<label>.png (pyvista, off-screen) at curve point
-    `index`: deformed surface region near the contact coloured by σ_zz."""
-    import meshio
+def field_units(result, scales=None):
+    """(unit, coordinate factor, displacement factor): the one length unit of a VTU's
+    coordinates and displacements and the factors that bring coordinates (in √(Rε)) and
+    displacements (in ε) to it: m with physical inputs, √(Rε) where R/ε is known (the exact
+    sphere). None for a Derjaguin result: it has no R/ε, so its displacements stay in ε."""
+    if scales is not None:
+        return "m", scales.length_r, scales.length_z
+    if result.radius_ratio is not None:
+        return "sqrt(R eps)", 1.0, 1.0 / np.sqrt(result.radius_ratio)
+    return None
 
-    mesh, nodal, sigma = state_fields(result, index)
-    points = np.column_stack([mesh.p.T, np.zeros(mesh.p.shape[1])])
-    u3 = np.column_stack([nodal, np.zeros(len(nodal))])
-    grid = meshio.Mesh(points, [("triangle", mesh.t.T)], point_data={"u": u3},
-                       cell_data={"sigma_zz": [sigma]})
+
+def write_fields(result, folder, label, index, scales=None):
+    """fields_<label>.vtu and fields_<label>.png (pyvista, off-screen) at curve point `index`:
+    the deformed region near the contact coloured by σ_zz.
+
+    The VTU's arrays carry their unit in their name. It holds the displacement "u [unit]" in
+    the coordinates' own unit (`field_units`: m with physical inputs, √(Rε) with the exact
+    sphere; a Derjaguin result, which has no R/ε, holds "u [eps]"), the stress tensor
+    (sigma_rr, sigma_zz, sigma_tt, sigma_rz; Pa with physical inputs, else Δγ/ε), the material
+    (0 substrate, 1 layer), and as field data the state (mu, delta_o, p)."""
+    import pyvista as pv
+
+    mesh, nodal, stress = state_fields(result, index)
+    eq = result.equilibrium
+    units = field_units(result, scales)
+    length = units[1] if units else 1.0
+    points = np.column_stack([mesh.p.T * length, np.zeros(mesh.p.shape[1])])
+    u3 = np.column_stack([nodal * (units[2] if units else 1.0), np.zeros(len(nodal))])
+    cells = np.column_stack([np.full(mesh.t.shape[1], 3), mesh.t.T]).ravel()
+    grid = pv.UnstructuredGrid(cells, np.full(mesh.t.shape[1], pv.CellType.TRIANGLE), points)
+    length_unit = units[0] if units else "sqrt(R eps)"
+    grid.point_data[f"u [{length_unit if units else 'eps'}]"] = u3
+    stress_unit = "Pa" if scales is not None else "dgamma/eps"
+    stress = stress * (scales.traction if scales is not None else 1.0)
+    for column, name in enumerate(("sigma_rr", "sigma_zz", "sigma_tt", "sigma_rz")):
+        grid.cell_data[f"{name} [{stress_unit}]"] = stress[:, column]
+    grid.cell_data["material (0 substrate, 1 layer)"] = (
+        result.model.half_space.in_layer.astype(np.int32))
+    grid.field_data.update({"mu": [result.mu], "delta_o [eps]": [float(eq.delta[index])],
+                            "p [2 pi R dgamma]": [float(eq.p[index])]})
     folder = Path(folder)
     vtu = folder / f"fields_{label}.vtu"
     with atomic_path(vtu) as tmp:
-        meshio.write(tmp, grid, file_format="vtu")
-    eq = result.equilibrium
+        grid.save(tmp)
     title = f"mu = {result.mu:g}, delta_o = {eq.delta[index]:.4g} eps, P = {eq.p[index]:.4g}"
-    png = _render(points, mesh.t, u3, sigma, folder / f"fields_{label}.png", title,
-                  window=max(1.5, 2.5 * float(eq.a_c[index])))
+    window = max(1.5, 2.5 * float(eq.a_c[index])) * length
+    png = _render(grid, folder / f"fields_{label}.png", title, window, stress_unit,
+                  length_unit)
     return [vtu, png]
 
 
-def _render(points, triangles, u3, sigma, path, title, window):
+def _render(grid, path, title, window, stress_unit, length_unit):
     import pyvista as pv
     from vtkmodules.vtkCommonCore import vtkLogger
 
     vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_OFF)
-    cells = np.column_stack([np.full(triangles.shape[1], 3), triangles.T]).ravel()
-    grid = pv.UnstructuredGrid(cells, np.full(triangles.shape[1], pv.CellType.TRIANGLE), points)
-    grid.cell_data["sigma_zz [dgamma/eps]"] = sigma
-    shown = float(np.max(np.abs(u3[:, 1]))) or 1.0
-    grid.point_data["u"] = u3 * (0.05 * window / shown)
-    near = grid.clip_box([0.0, window, -window, 0.0, -1.0, 1.0], invert=False).warp_by_vector("u")
-    limit = float(np.max(np.abs(near.cell_data["sigma_zz [dgamma/eps]"]))) or 1.0
+    grid = grid.copy()
+    u = next(grid.point_data[name] for name in grid.point_data if name.startswith("u ["))
+    if length_unit == "m":  # axis ticks in nm, not 0.0
+        grid.points, u = grid.points * 1e9, u * 1e9
+        window, length_unit = window * 1e9, "nm"
+    shown = float(np.max(np.abs(u[:, 1]))) or 1.0
+    grid.point_data["shown"] = u * (0.05 * window / shown)  # a visible warp, its factor printed
+    near = grid.clip_box([0.0, window, -window, 0.0, -1.0, 1.0],
+                         invert=False).warp_by_vector("shown")
+    sigma_zz = f"sigma_zz [{stress_unit}]"
+    limit = float(np.max(np.abs(near.cell_data[sigma_zz]))) or 1.0
     plotter = pv.Plotter(off_screen=True, window_size=(1000, 600))
     bar = dict(vertical=True, position_x=0.86, position_y=0.15, height=0.7, width=0.05,
-               title="sigma_zz / (dgamma/eps)")
-    plotter.add_mesh(near, scalars="sigma_zz [dgamma/eps]", cmap="RdBu_r", clim=(-limit, limit),
+               title=f"sigma_zz [{stress_unit}]")
+    plotter.add_mesh(near, scalars=sigma_zz, cmap="RdBu_r", clim=(-limit, limit),
                      scalar_bar_args=bar)
     plotter.add_text(title + f"  (displacement x {0.05 * window / shown:.3g})", font_size=10)
     plotter.view_xy()
-    plotter.show_bounds(xtitle="r / sqrt(R eps)", ytitle="z / sqrt(R eps)", location="outer")
+    plotter.show_bounds(xtitle=f"r [{length_unit}]", ytitle=f"z [{length_unit}]",
+                        location="outer")
     with atomic_path(path) as tmp:
         plotter.screenshot(tmp)
     plotter.close()
     return Path(path)
 
 
-def write_all(result, folder):
+def write_all(result, folder, scales=None):
     """Curves, the curve figure and, for the FE (the BEM has no bulk mesh), the fields at P̄max
-    (approach) and P̄off (retraction). All or nothing: the files are written into a staging
-    folder and moved into `folder` only when every one of them is complete."""
+    (approach) and P̄off (retraction), the fields in SI with `scales` (physical inputs). All or
+    nothing: the files are written into a staging folder and moved into `folder` only when
+    every one of them is complete."""
     folder = Path(folder)
     with staged_folder(folder) as stage:
         names = [p.name for p in write_curves(result, stage)]
@@ -144,5 +184,5 @@ def write_all(result, folder):
             for label, delta, p in (("p_max", ev.delta_oc, ev.p_max),
                                     ("p_off", ev.delta_off, ev.p_off)):
                 names += [p.name for p in write_fields(result, stage, label,
-                                                       state_index(eq, delta, p))]
+                                                       state_index(eq, delta, p), scales)]
     return [folder / name for name in names]
