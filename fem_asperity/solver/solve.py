@@ -220,6 +220,12 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
         in_range("spring_constant", spring_constant, 0.0, SPRING_MAX)
     disc = discretisation(sizing_mu(mu, solid), accuracy, p_end=p_end, method=method,
                           track_edge=False if spring_constant is not None else None)
+    if spring_constant is not None:
+        # The spring lets the sphere go at a force of at most Bradley's 1 (2πRΔγ), from δ̄o below
+        # x_start, so it lands below x_start + 1/k̄: the curve starts beyond that
+        # (test_load_line.py::test_a_soft_spring_lands_beyond_the_usual_start).
+        x_start = disc.trace.x_start + 1.0 / spring_constant
+        disc = replace(disc, trace=replace(disc.trace, x_start=x_start))
     options = dict(solid=solid, radius_ratio=radius_ratio, unstable_branch=unstable_branch,
                    spring_constant=spring_constant)
     if not error_estimate:
