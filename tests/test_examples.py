@@ -75,6 +75,12 @@ def test_mems_rough_surface(tmp_path, monkeypatch):
     order = np.argsort([float(r["sigma_nm"]) for r in rows])
     kept = [pressures[i] for i in order if float(rows[i]["sigma_nm"]) >= 2.0]
     assert np.all(np.diff(kept) < 0.0)
+    # Step 6: the solved BEM law on the headline surface. Below the jump-in (μ ≈ 0.28) every
+    # summit pulls at most Bradley's force, so F̄max ≤ 1, and the paper's law is off it by more
+    # than the 10 % that `gw fmax --compare` warns at (19 % measured when this was written).
+    assert 0.0 < ns["best_solved"].f_max < 1.0
+    assert ns["OFF"] == pytest.approx(ns["best"].f_max / ns["best_solved"].f_max - 1.0)
+    assert abs(ns["OFF"]) > 0.1 > ns["solved"].interpolation_error
 
 
 def test_single_curve(tmp_path, monkeypatch):
@@ -150,7 +156,8 @@ def test_fig9(tmp_path, monkeypatch):
 
 def test_afm_cantilever(tmp_path, monkeypatch):
     """Below the onset (μ ≈ 0.59) the rigid holder shows no jump-in and the cantilever does; the
-    pull-off in newtons is p̄_off · 2πRΔγ; the cantilever figure is written."""
+    pull-off in newtons is p̄_off · 2πRΔγ; the cantilever figure is written; the polymer as a
+    film on silicon."""
     ns = run_example("afm_cantilever", tmp_path, monkeypatch)
     assert 0.5 < ns["scales"].mu < 0.69
     assert ns["rigid"].events.jump_in is None and ns["lever"].events.jump_in is not None
@@ -161,3 +168,9 @@ def test_afm_cantilever(tmp_path, monkeypatch):
     assert saved["inputs"]["control"] == "load line"
     assert saved["z_jump_in"] == ns["row"]["z_jump_in"]
     assert_png(tmp_path / "cantilever.png")
+    # The film on silicon: meshed for the film's own μ, and a thin film on a stiff substrate
+    # pulls off between the bulk polymer and Bradley's rigid limit, −1 (silicon alone: μ = 0.04)
+    film = ns["film"]
+    assert film.status == "ok" and film.events.jump_in is not None
+    assert "sized for the layer's Tabor parameter" in film.message
+    assert -1.0 < film.events.p_off < ns["row"]["p_off"]
