@@ -18,7 +18,7 @@ from .closed_forms.physical_arguments import (
 )
 from .closed_forms.scales import si_unit
 from .plumbing.checks import positive
-from .plumbing.cli import Parser, ProgressBar, dump_json, print_table, run
+from .plumbing.cli import Parser, ProgressBar, dump_json, format_cell, print_table, run
 from .plumbing.errors import DerjaguinWarning
 from .plumbing.files import writable_folder
 from .solver.presets import METHODS, PRESETS
@@ -207,13 +207,16 @@ def _curve(args, parser):
     else:
         estimates = ("error_estimate", "relative_error_estimate")
         absolute, relative = (row[key] or {} for key in estimates)
-        provenance = ("inputs", "version", "solver_revision", "si")
+        provenance = ("layer_groups", "inputs", "version", "solver_revision", "si")
         si = row.get("si", {})
         print_table([{"quantity": k, "value": v, "error_estimate": absolute.get(k),
                       "relative": relative.get(k), "SI": _si_text(k, si.get(k))}
                      for k, v in row.items() if k not in estimates + provenance],
                     ("quantity", "value", "error_estimate", "relative")
                     + (("SI",) if si else ()))
+        if row["layer_groups"]:
+            print("layer: " + ", ".join(f"{k} {format_cell(v)}"
+                                        for k, v in row["layer_groups"].items()))
         print(f"version {row['version']}, solver revision {row['solver_revision']}; inputs "
               f"{json.dumps(row['inputs'])}")
     return 0

@@ -309,11 +309,16 @@ def test_layer_in_metres_and_fields_in_si(tmp_path):
                str(El), "--layer-nu", str(nul), "--accuracy", "draft", "--no-error-estimate",
                "--json", "--out", str(tmp_path))
     assert done.returncode == 0, done.stderr
-    solid = json.loads(done.stdout)["inputs"]["solid"]
+    row = json.loads(done.stdout)
+    solid, groups = row["inputs"]["solid"], row["layer_groups"]
     assert solid["layer_thickness"] == pytest.approx(t / np.sqrt(R * eps), rel=1e-12)
     assert solid["layer_modulus_ratio"] == pytest.approx(
         El / (1 - nul**2) / (E1 / (1 - nu1**2)), rel=1e-12)
     assert solid["nu"] == nu1 and solid["layer_nu"] == nul
+    assert groups["thickness"] == solid["layer_thickness"]
+    assert groups["mu_layer"] == pytest.approx(row["mu"] * solid["layer_modulus_ratio"]
+                                               ** (-2 / 3), rel=1e-12)
+    assert groups["thickness_over_a_c"] == pytest.approx(groups["thickness"] / row["a_c"])
     fields = meshio.read(tmp_path / "fields_p_off.vtu")
     material = fields.cell_data["material (0 substrate, 1 layer)"][0]
     depth = -fields.points[:, 1][fields.cells[0].data].mean(axis=1)  # element centroids, m

@@ -102,6 +102,19 @@ class CurveResult:
         """More folds than one jump-in and one jump-out: the sign of a surface mesh too coarse."""
         return self.folds > PHYSICAL_FOLDS
 
+    def layer_groups(self):
+        """The groups that govern a layered contact, None for a homogeneous half-space:
+        thickness t/√(Rε), modulus_ratio M = E*_layer/E*_substrate, the Tabor parameters of the
+        substrate (μ) and of the layer (μ M^(−2/3), Tabor's μ with the layer's E*), and
+        thickness_over_a_c, t over the contact radius at P̄max (None where a_c = 0)."""
+        t = self.solid.layer_thickness
+        if t is None:
+            return None
+        ratio, a_c = self.solid.layer_modulus_ratio, self.events.a_c
+        return {"thickness": t, "modulus_ratio": ratio, "mu_substrate": self.mu,
+                "mu_layer": self.mu * ratio ** (-2.0 / 3.0),
+                "thickness_over_a_c": t / a_c if a_c else None}
+
     def inputs(self):
         """Every input that produced the curve, JSON-ready: the solid (layer included), the
         profile, the control and the paths traced."""
@@ -130,6 +143,7 @@ class CurveResult:
             "wall_s": self.wall_s,
             "status": self.status,
             "message": self.message,
+            "layer_groups": self.layer_groups(),
             "inputs": self.inputs(),
             "version": __version__,
             "solver_revision": solver_revision(),
