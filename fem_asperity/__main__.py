@@ -57,8 +57,8 @@ def build_parser():
                             "results then depend on mu alone). Default with physical inputs: "
                             "sphere; with --mu: derjaguin (no R/eps)")
     curve.add_argument("--method", choices=METHODS, default="fem",
-                       help="fem: finite elements (layers allowed); bem: boundary integral of the "
-                            "homogeneous half-space, faster (default: %(default)s)")
+                       help="fem: finite elements; bem: boundary integral (a layer through its "
+                            "Hankel-transform kernel), faster (default: %(default)s)")
     curve.add_argument("--accuracy", choices=tuple(PRESETS), default="default",
                        help="mesh and step resolution (default: %(default)s)")
     curve.add_argument("--tolerance", type=float,

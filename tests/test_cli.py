@@ -186,7 +186,6 @@ def test_curve_json_files_and_progress(tmp_path):
     ["curve"], ["curve", "--mu", "0"], ["curve", "--mu", "1", "--accuracy", "best"],
     ["curve", "--mu", "1", "--layer-modulus-ratio", "2"],
     ["curve", "--mu", "1", "--layer-thickness", "-1"], ["curve", "--mu", "1", "--nu", "0.5"],
-    ["curve", "--mu", "1", "--method", "bem", "--layer-thickness", "1"],
     ["curve", "--mu", "1", "--method", "spectral"], ["curve", "--mu", "1", "--tolerance", "0"],
     ["curve", "--mu", "1e-300"], ["curve", "--mu", "1", "--layer-thickness", "1e-300"],
     ["curve", "--mu", "1", "--layer-thickness", "1", "--layer-modulus-ratio", "1e300"],

@@ -17,6 +17,7 @@ from scipy.sparse import csr_matrix
 
 from ..plumbing.errors import InputError
 from .boussinesq import displacement_matrix
+from .layered import layer_correction
 
 
 def radial_grid(*, h, r_fine, r_max, growth=0.1):
@@ -33,14 +34,16 @@ def radial_grid(*, h, r_fine, r_max, growth=0.1):
 
 
 class BoussinesqSurface:
-    """Surface operators of the homogeneous elastic half-space on the radial grid `nodes`.
+    """Surface operators of the elastic half-space on the radial grid `nodes`: homogeneous, or
+    with the bonded layer of `solid` (`fe.Solid`; its layer's half-space plus the correction of
+    `layered.layer_correction`).
 
     The `operator.ElasticSurface` interface: r_nodes, r_quad (Gauss points, `quad_points` per
     element), weights (Gauss weight × r), interp (nodal values → values at r_quad), compliance
     (dense C), dofs (unknowns: the surface nodes).
     """
 
-    def __init__(self, nodes, *, quad_points=4):
+    def __init__(self, nodes, *, quad_points=4, solid=None):
         nodes = np.asarray(nodes, dtype=float)
         if nodes[0] != 0.0 or np.any(np.diff(nodes) <= 0.0):
             raise InputError("the radial grid must start at 0 and increase")
@@ -61,6 +64,9 @@ class BoussinesqSurface:
         banded[0, 1:], banded[1] = mass.diagonal(1), mass.diagonal()
         factor = cholesky_banded(banded), False
         coupling = weighted @ displacement_matrix(nodes, self.r_quad)
+        if solid is not None and solid.layer_thickness is not None:
+            coupling = (coupling / solid.layer_modulus_ratio
+                        + layer_correction(nodes, solid))
         half = cho_solve_banded(factor, 0.5 * (coupling + coupling.T))
         self.compliance = cho_solve_banded(factor, half.T)
         self.compliance = 0.5 * (self.compliance + self.compliance.T)

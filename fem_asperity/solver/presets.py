@@ -183,10 +183,9 @@ class BEMDiscretisation(_Resolution):
     _GRADING = "growth"
 
     def elastic(self, solid=Solid()):
-        """The Boussinesq surface on this grid; refuses a layered `solid`."""
-        _homogeneous(solid)
+        """The boundary-integral surface of `solid` (homogeneous or layered) on this grid."""
         return BoussinesqSurface(radial_grid(h=self.h_surface, r_fine=self.r_fine,
-                                             r_max=self.r_max, growth=self.growth))
+                                             r_max=self.r_max, growth=self.growth), solid=solid)
 
 
 @dataclass(frozen=True)
@@ -210,16 +209,14 @@ class EdgeDiscretisation(_Resolution):
     _LENGTHS = ("h_contact",)
 
     def grids(self, mu, *, solid=Solid(), radius_ratio=None):
-        """The grids of a curve at `mu`, built as its edges move; a homogeneous half-space."""
-        _homogeneous(solid)
+        """The grids of a curve at `mu`, built as its edges move; a homogeneous half-space (a
+        layer's correction on every grid would cost more than the grids save)."""
+        if solid.layer_thickness is not None:
+            raise InputError("grids that follow the contact edge model a homogeneous "
+                             "half-space; a layer takes one uniform grid (track_edge=False)")
         return EdgeGrids(mu, h=self.h_surface, band=self.band, h_inside=self.h_inside,
                          contact_h=self.h_contact, contact_r=self.r_contact, r_max=self.r_max,
                          growth=self.growth, radius_ratio=radius_ratio)
-
-
-def _homogeneous(solid):
-    if solid.layer_thickness is not None:
-        raise InputError("method 'bem' models a homogeneous half-space; use 'fem' for a layer")
 
 
 def jkr_radius(load, mu):

@@ -189,7 +189,7 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
                 progress=None):
     """Approach and retraction of a rigid sphere on the half-space at Tabor parameter `mu`.
 
-    method: 'fem' (finite elements, layers allowed) or 'bem' (boundary integral, homogeneous).
+    method: 'fem' (finite elements) or 'bem' (boundary integral; a layer by `solids.layered`).
     accuracy: 'draft', 'default' or 'fine' (see `presets.PRESETS`).
     solid: `Solid` (homogeneous by default; a layer with thickness in √(Rε)).
     radius_ratio: R/ε for the exact sphere profile instead of Derjaguin's parabola (None).
@@ -206,7 +206,7 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     spring_constant: load-line control, as through an AFM cantilever, with a spring of this
         stiffness k̄ = Kε/(2πRΔγ) (> 0): the jumps come where dP̄/dδ̄o reaches k̄, and the
         result's z_jumps hold the spring end's z̄ at them (`path.load_line`); the whole curve is
-        traced (uniform grids: μ < 6 for the BEM). None (default): displacement control.
+        traced (on one uniform grid). None (default): displacement control.
     A curve that ripples, or misses a jump it must have, is solved again on refined
     discretisations (up to REFINEMENTS times); one that still does carries that `status`.
     progress: callable(fraction in [0, 1]) for a progress bar.
@@ -218,8 +218,8 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
         in_range("radius_ratio", radius_ratio, 10.0, np.inf, closed_lo=True)
     if spring_constant is not None:
         in_range("spring_constant", spring_constant, 0.0, SPRING_MAX)
-    disc = discretisation(sizing_mu(mu, solid), accuracy, p_end=p_end, method=method,
-                          track_edge=False if spring_constant is not None else None)
+    disc = _discretisation(mu, accuracy, solid=solid, method=method, p_end=p_end,
+                           whole=unstable_branch or spring_constant is not None)
     if spring_constant is not None:
         # The spring lets the sphere go at a force of at most Bradley's 1 (2πRΔγ), from δ̄o below
         # x_start, so it lands below x_start + 1/k̄: the curve starts beyond that
@@ -296,6 +296,15 @@ def _both(progress):
     return reporter(0), reporter(1)
 
 
+def _discretisation(mu, accuracy, *, solid, method, p_end, whole):
+    """The preset's discretisation, sized for the most compliant material (`sizing_mu`), on one
+    uniform grid where the `whole` curve is traced (the edge-following grids trace stable
+    branches) or a layer's correction would be rebuilt on every edge-following grid."""
+    uniform = whole or solid.layer_thickness is not None
+    return discretisation(sizing_mu(mu, solid), accuracy, p_end=p_end, method=method,
+                          track_edge=False if uniform else None)
+
+
 def _mu(mu):
     """μ of a solved curve: one finite number in MU_RANGE."""
     if np.ndim(mu) != 0:
@@ -316,7 +325,8 @@ def solve_to_tolerance(mu, tolerance, *, method="fem", solid=Solid(), radius_rat
     is returned with a message saying so. Arguments otherwise as `solve_curve`."""
     mu = _mu(mu)
     tolerance = in_range("tolerance", tolerance, 0.0, 0.1)
-    disc = discretisation(sizing_mu(mu, solid), "draft", p_end=p_end, method=method)
+    disc = _discretisation(mu, "draft", solid=solid, method=method, p_end=p_end,
+                           whole=unstable_branch)
 
     def level(k, d):
         report = (lambda f: progress((k + f) / max_levels)) if progress else None
