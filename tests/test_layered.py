@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 from scipy.special import j0
 
+from fem_asperity import InputError
 from fem_asperity.solids import layered
 from fem_asperity.solids.bem import BoussinesqSurface, radial_grid
 from fem_asperity.solids.fe import Solid
@@ -182,3 +183,28 @@ def test_a_thin_layer_gives_the_substrates_answer():
                                                    layer_modulus_ratio=ratio)))
                    - substrate) for t in (0.1, 0.05)]
     assert np.all((1.6 < gaps[0] / gaps[1]) & (gaps[0] / gaps[1] < 2.2))
+
+
+@pytest.mark.parametrize("method", ["fem", "bem"])
+def test_extreme_layers_converge_or_stop_with_a_clear_message(method):
+    """At μ = 1: a stiff layer (M = 100) 999 √(Rε) thick is the layer's half-space (a rigid-like
+    contact pulling off near Bradley's −1); a soft one (M = 0.01), thick or 0.01 thin, would need
+    a grid sized for its Tabor parameter 21.5 (22000 FE surface elements, 35000 BEM nodes) and is
+    refused before any work, naming the limit."""
+    stiff = solve_curve(1.0, method=method, accuracy="draft", error_estimate=False,
+                        solid=Solid(layer_thickness=999.0, layer_modulus_ratio=100.0))
+    assert stiff.status == "ok" and stiff.events.p_off == pytest.approx(-0.995, abs=2e-3)
+    for thickness in (999.0, 0.01):
+        with pytest.raises(InputError, match="at most"):
+            solve_curve(1.0, method=method, accuracy="draft", error_estimate=False,
+                        solid=Solid(layer_thickness=thickness, layer_modulus_ratio=0.01))
+
+
+def test_a_thin_stiff_layer_is_the_substrate():
+    """A layer 100 times stiffer and 0.01 √(Rε) thin hardly changes the substrate's contact:
+    P̄off within 1e-4 (FE; 8e-5 when this was written)."""
+    thin = solve_curve(1.0, method="fem", accuracy="draft", error_estimate=False,
+                       solid=Solid(layer_thickness=0.01, layer_modulus_ratio=100.0))
+    substrate = solve_curve(1.0, method="fem", accuracy="draft", error_estimate=False)
+    assert thin.status == "ok"
+    assert thin.events.p_off == pytest.approx(substrate.events.p_off, abs=1e-4)

@@ -89,6 +89,11 @@ FE_MAX_SURFACE_ELEMENTS = 2500
 #: process was killed for memory at 13.7 GB. Checked after meshing (seconds), before assembly.
 #: test_fem_curve.py::test_a_layer_the_fe_cannot_resolve_is_refused_up_front.
 FE_MAX_ELEMENTS = 300_000
+#: Most nodes of a uniform boundary-integral grid: its dense operators take n² memory (128 MB
+#: per matrix at 4000) and each factorisation n³ work; the edge-following grids stay below
+#: 1000. A soft layer (M = 0.01) at μ = 1 asked for 35000 and ran out of memory (37 GB).
+#: test_layered.py::test_extreme_layers_converge_or_stop_with_a_clear_message.
+BEM_MAX_NODES = 4000
 #: Methods: finite elements ('fem') or the boundary-integral solver ('bem').
 METHODS = ("fem", "bem")
 #: The error estimate's finer solve grades the bulk (FE) or tail (BEM) twice as gently, so the
@@ -156,7 +161,7 @@ class FEDiscretisation(_Resolution):
                 f"the FE surface would need {elements:.0f} elements ({self.h_surface:.3g} over "
                 f"r <= {self.r_fine:.3g} sqrt(R eps), sized for the most compliant material's "
                 f"Tabor parameter); the FE takes at most {FE_MAX_SURFACE_ELEMENTS}: a smaller mu, "
-                f"a stiffer or thinner layer, or the BEM for a homogeneous solid")
+                f"a stiffer layer, or the BEM")
         mesh = graded_mesh(h_surface=self.h_surface, r_fine=self.r_fine, size=self.size,
                            grading=self.grading, layer_thickness=solid.layer_thickness)
         if mesh.t.shape[1] > FE_MAX_ELEMENTS:
@@ -183,9 +188,17 @@ class BEMDiscretisation(_Resolution):
     _GRADING = "growth"
 
     def elastic(self, solid=Solid()):
-        """The boundary-integral surface of `solid` (homogeneous or layered) on this grid."""
-        return BoussinesqSurface(radial_grid(h=self.h_surface, r_fine=self.r_fine,
-                                             r_max=self.r_max, growth=self.growth), solid=solid)
+        """The boundary-integral surface of `solid` (homogeneous or layered) on this grid;
+        refuses a grid of more than BEM_MAX_NODES nodes (`InputError`)."""
+        nodes = radial_grid(h=self.h_surface, r_fine=self.r_fine, r_max=self.r_max,
+                            growth=self.growth)
+        if nodes.size > BEM_MAX_NODES:
+            raise InputError(
+                f"the boundary-integral grid would need {nodes.size} nodes ({self.h_surface:.3g} "
+                f"over r <= {self.r_fine:.3g} sqrt(R eps), sized for the most compliant "
+                f"material's Tabor parameter); it takes at most {BEM_MAX_NODES}: a smaller mu, "
+                f"a stiffer layer, or a coarser accuracy")
+        return BoussinesqSurface(nodes, solid=solid)
 
 
 @dataclass(frozen=True)
