@@ -1,6 +1,6 @@
 """Solved single-asperity curves, computed on demand and stored for reuse.
 
-A curve at (μ, method, accuracy) is solved once with `solver.solve.solve_curve` and its files
+A curve at (μ, method, accuracy, solid) is solved once with `solver.solve.solve_curve` and its files
 (`approach.csv`, ..., `result.json`, `events.json`) are kept under $ADHESION_CACHE, else
 ~/.cache/adhesion-verification, with `manifest.json` (their checksums) written last: a folder
 without it is solved again, one whose files no longer match it is moved aside and solved again.
@@ -22,6 +22,7 @@ import numpy as np
 from ..path.curve import Curve, Events, Jump, curve_from_columns
 from ..plumbing.files import writable_folder, write_atomic
 from ..plumbing.revision import solver_revision
+from ..solids.fe import Solid
 from ..solver.result import curve_files, relative_estimate
 from ..solver.solve import solve_curve
 
@@ -72,11 +73,15 @@ def mu_key(mu):
     return float(f"{float(mu):.12g}")
 
 
-def curve_folder(mu, *, method, accuracy, error_estimate, unstable_branch=False, cache=None):
-    """Where the curve at (`mu`, method, accuracy) of this solver revision is stored; curves with
-    and without the error estimate, and with the whole equilibrium curve (`unstable_branch`),
-    are kept apart (each costs more)."""
+def curve_folder(mu, *, method, accuracy, error_estimate, unstable_branch=False, solid=Solid(),
+                 cache=None):
+    """Where the curve at (`mu`, method, accuracy, solid) of this solver revision is stored;
+    curves with and without the error estimate, and with the whole equilibrium curve
+    (`unstable_branch`), are kept apart (each costs more); a layered solid adds its layer."""
     extras = ("-estimated" if error_estimate else "") + ("-whole" if unstable_branch else "")
+    if solid.layer_thickness is not None:
+        extras += (f"-layer-t{solid.layer_thickness:.12g}-M{solid.layer_modulus_ratio:.12g}"
+                   f"-nu{solid.nu:.12g}-{solid.layer_nu:.12g}")
     name = f"{method}-{accuracy}{extras}-mu{mu_key(mu):.12g}-{solver_revision()}"
     return Path(cache or cache_dir()) / name
 
@@ -195,11 +200,12 @@ def load_stored(folder):
 
 
 def stored_curve(mu, *, method="bem", accuracy="default", error_estimate=False,
-                 unstable_branch=False, cache=None, progress=None):
-    """`StoredCurve` at `mu`, solved now (and stored) if not stored yet; `unstable_branch`: its
-    `equilibrium` is the whole curve, unstable branches included (`solve_curve`)."""
+                 unstable_branch=False, solid=Solid(), cache=None, progress=None):
+    """`StoredCurve` at `mu` on `solid`, solved now (and stored) if not stored yet;
+    `unstable_branch`: its `equilibrium` is the whole curve, unstable branches included
+    (`solve_curve`)."""
     folder = curve_folder(mu, method=method, accuracy=accuracy, error_estimate=error_estimate,
-                          unstable_branch=unstable_branch, cache=cache)
+                          unstable_branch=unstable_branch, solid=solid, cache=cache)
     stored = load_stored(folder)
     if stored is not None:
         return stored
@@ -208,6 +214,7 @@ def stored_curve(mu, *, method="bem", accuracy="default", error_estimate=False,
         stored = load_stored(folder)  # another process may have solved it while we waited
         if stored is None:
             keep(solve_curve(mu, method=method, accuracy=accuracy, error_estimate=error_estimate,
-                             unstable_branch=unstable_branch, progress=progress), folder)
+                             unstable_branch=unstable_branch, solid=solid, progress=progress),
+                 folder)
             stored = load_stored(folder)
     return stored

@@ -20,7 +20,7 @@ import os
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from concurrent.futures.process import BrokenProcessPool
-from dataclasses import dataclass, replace
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -32,6 +32,7 @@ from ..plumbing.cli import format_cell
 from ..plumbing.errors import InputError
 from ..plumbing.files import staged_folder, writable_folder, write_atomic
 from ..plumbing.version import __version__
+from ..solids.fe import Solid
 from ..solver.presets import METHODS, PRESETS
 from ..solver.solve import MU_RANGE, solve_curve
 from .store import (
@@ -95,8 +96,8 @@ class SweepRow:
 class Sweep:
     """The rows of a sweep (by increasing μ) and how they were obtained: method, accuracy,
     whether with the error estimate, how many curves were solved now and how many read from the
-    store, and the wall time. `scales`: the physical inputs (`Scales`) of the μ that came from
-    them; their rows gain the inputs and every event in SI."""
+    store, and the wall time; the `solid` of every curve. `scales`: the physical inputs
+    (`Scales`) of the μ that came from them; their rows gain the inputs and every event in SI."""
 
     method: str
     accuracy: str
@@ -106,6 +107,7 @@ class Sweep:
     stored: int
     wall_s: float
     scales: tuple = ()
+    solid: Solid = Solid()
 
     @property
     def failed(self):
@@ -150,7 +152,8 @@ class Sweep:
     def records(self):
         """The sidecar sweep.json: inputs, counters, units and provenance."""
         return {"method": self.method, "accuracy": self.accuracy,
-                "error_estimate": self.error_estimate, "mu": [row.mu for row in self.rows],
+                "error_estimate": self.error_estimate, "solid": asdict(self.solid),
+                "mu": [row.mu for row in self.rows],
                 "solved": self.solved, "stored": self.stored, "failed": len(self.failed),
                 "wall_s": self.wall_s, "solver_revision": solver_revision(),
                 "version": __version__,
@@ -196,11 +199,12 @@ def mu_range(lo, hi, n):
     return [float(m) for m in np.geomspace(lo, hi, int(n))]
 
 
-def solve_for_sweep(mu, method, accuracy, error_estimate):
+def solve_for_sweep(mu, method, accuracy, error_estimate, solid=Solid()):
     """The worker's job: one curve, without its solved model (it does not travel between
     processes), or the exception that stopped it."""
     try:
-        result = solve_curve(mu, method=method, accuracy=accuracy, error_estimate=error_estimate)
+        result = solve_curve(mu, method=method, accuracy=accuracy, error_estimate=error_estimate,
+                             solid=solid)
     except Exception as exc:  # reported in the μ's row; the sweep goes on
         return exc
     return replace(result, model=None)
@@ -263,12 +267,12 @@ def _cluster_jobs(scheduler, todo, args):
             yield futures[future], result
 
 
-def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, jobs=None,
-          scheduler=None, cache=None, progress=None, scales=()):
+def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, solid=Solid(),
+          jobs=None, scheduler=None, cache=None, progress=None, scales=()):
     """Solve the curves at every μ of `mus` (those not stored yet) and return the `Sweep`.
 
-    method, accuracy, error_estimate: as `solve_curve`. jobs: worker processes on this machine
-    (default: one per core); scheduler: address of a Dask scheduler instead ('tcp://host:8786').
+    method, accuracy, error_estimate, solid: as `solve_curve`. jobs: worker processes on this
+    machine (default: one per core); scheduler: address of a Dask scheduler instead ('tcp://host:8786').
     cache: the store's folder (default $ADHESION_CACHE). progress: callable(fraction of the
     curves to solve that are done), called as each finishes. scales: the `Scales` the μ came
     from (physical inputs), for SI columns in the events.
@@ -286,12 +290,12 @@ def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, jobs=No
         raise InputError(f"jobs must be a whole number >= 1; got {jobs!r}")
     writable_folder(cache or cache_dir(), "the store ($ADHESION_CACHE)")  # before solving
     start = time.perf_counter()
-    folders = {mu: curve_folder(mu, method=method, accuracy=accuracy,
+    folders = {mu: curve_folder(mu, method=method, accuracy=accuracy, solid=solid,
                                 error_estimate=error_estimate, cache=cache) for mu in mus}
     stored = {mu: load_stored(folders[mu]) for mu in mus}
     todo = [mu for mu in mus if stored[mu] is None]
     failures = {}
-    args = (method, accuracy, error_estimate)
+    args = (method, accuracy, error_estimate, solid)
     runs = (_cluster_jobs(scheduler, todo, args) if scheduler
             else _local_jobs(int(jobs), todo, args))
     for done, (mu, result) in enumerate(runs, 1):
@@ -310,5 +314,5 @@ def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, jobs=No
             rows.append(SweepRow(mu, stored[mu].status, stored[mu].message, stored[mu]))
     return Sweep(method, accuracy, error_estimate, tuple(rows), solved=len(todo) - len(failures),
                  stored=len(mus) - len(todo), wall_s=time.perf_counter() - start,
-                 scales=tuple(scales))
+                 scales=tuple(scales), solid=solid)
 
