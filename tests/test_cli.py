@@ -91,7 +91,11 @@ def test_validation_all_writes_its_files(tmp_path):
     summary = json.loads(done.stdout)
     assert sorted(p.name for p in out.iterdir()) == [
         "law_comparison.png", "paper_laws.json", "paper_laws.png", "report.md",
-        "rough_surface.json", "rough_surface.md", "rough_surface.png", "single_asperity"]
+        "layered", "rough_surface.json", "rough_surface.md", "rough_surface.png",
+        "single_asperity"]
+    assert sorted(p.name for p in (out / "layered").iterdir()) == [
+        "layered.json", "map.png", "report.md"]
+    assert summary["layered"]["failed"] == []
     assert sorted(p.name for p in (out / "single_asperity").iterdir()) == [
         "fields_after_jump_in.png", "fields_after_jump_in.vtu", "fig3.png", "fig4.png",
         "fig5.png", "fig6.png", "fig7.png", "hysteresis.png", "report.json", "report.md"]
@@ -110,6 +114,7 @@ def test_validation_all_writes_its_files(tmp_path):
     assert "Not yet judged" in report and "| holds |" in report
     assert "Paper's law against the solved law" in report
     assert "Single asperity (FE sweeps)" in report
+    assert "Layered media" in report
     assert list((tmp_path / "cache").glob("bem-draft-mu1-*/result.json"))  # stored for reuse
     table = json.loads((out / "paper_laws.json").read_text())
     assert len(table["rows"]) == 101 and table["constants"]["c_off"] == 1.98

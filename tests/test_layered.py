@@ -208,3 +208,51 @@ def test_a_thin_stiff_layer_is_the_substrate():
     substrate = solve_curve(1.0, method="fem", accuracy="draft", error_estimate=False)
     assert thin.status == "ok"
     assert thin.events.p_off == pytest.approx(substrate.events.p_off, abs=1e-4)
+
+
+def test_pull_off_bracketing_and_jump_classification():
+    """`validation.layered._judged` on hand-made rows: between the limits (within the estimates)
+    or not, where in between, and the jump-in created or removed relative to the substrate."""
+    from validation.layered import _judged
+
+    def events(p_off, jump, err=1e-6):
+        return {"p_off": p_off, "p_off_err": err, "jump_in": jump}
+
+    inside = _judged({"layered": events(-0.85, True), "substrate": events(-0.9, False),
+                      "layer": events(-0.8, True)})
+    assert inside == {"bracketed": True, "position": pytest.approx(0.5),
+                      "jump": "created (as the layer)"}
+    outside = _judged({"layered": events(-0.95, False), "substrate": events(-0.9, True),
+                       "layer": events(-0.8, True)})
+    assert outside["bracketed"] is False and outside["position"] == pytest.approx(-0.5)
+    assert outside["jump"] == "removed"
+    edge = _judged({"layered": events(-0.9000015, True, 1e-6), "substrate": events(-0.9, True),
+                    "layer": events(-0.8, True)})
+    assert edge["bracketed"] is True and edge["jump"] == "as substrate"
+
+
+def test_validation_layered_on_a_one_point_map(tmp_path, monkeypatch):
+    """`python -m validation layered` end to end on a one-point map (μ = 1, t = 1, M = 0.5, draft):
+    files written, the FE and the layered BEM agree within their estimates, and both put the
+    pull-off of this soft layer outside the two homogeneous limits (more tensile than the
+    substrate's, -0.8353, and the layer's, -0.8041: -0.8623 when this was written)."""
+    from validation import layered
+    from validation.__main__ import main
+
+    monkeypatch.setenv("ADHESION_CACHE", str(tmp_path / "cache"))
+    for name, value in (("MUS", (1.0,)), ("THICKNESSES", (1.0,)), ("RATIOS", (0.5,)),
+                        ("FE_CHECKS", ((1.0, 1.0, 0.5),)), ("ROUGH_LAYERS", ((1.0, 0.5),))):
+        monkeypatch.setattr(layered, name, value)
+    assert main(["layered", "--accuracy", "draft", "--out", str(tmp_path / "out")]) == 0
+    folder = tmp_path / "out" / "layered"
+    assert sorted(p.name for p in folder.iterdir()) == ["layered.json", "map.png", "report.md"]
+    import json
+
+    summary = json.loads((folder / "layered.json").read_text())
+    (row,) = summary["rows"]
+    assert row["bracketed"] is False and row["layered"]["p_off"] < row["substrate"]["p_off"]
+    (check,) = summary["fe_checks"]
+    assert all(check["agree"].values())
+    assert check["fem"]["events"]["p_off"] < row["substrate"]["p_off"]
+    rough = summary["coated_rough_surface"][0]
+    assert rough["f_max_coated"] > 0 and "Layered media" in (folder / "report.md").read_text()

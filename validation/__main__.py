@@ -1,10 +1,11 @@
-"""The verification report: `python -m validation all|single-asperity|rough-surface --out DIR`.
+"""The verification report: `python -m validation all|<one part> --out DIR`.
 
 all: everything below and the report; single-asperity: the paper's fitted laws (Figs. 3-7)
 judged against FE sweeps, the BEM as cross-check; rough-surface: Figs. 9-13, their verdicts, the
-paper's law against the solved law. Curves are solved once and stored ($ADHESION_CACHE).
-accuracy: the speed-accuracy trade of the solvers' settings (`validation.accuracy`; not part of
-all); bench: timings of the main operations, for comparing versions."""
+paper's law against the solved law; layered: a bonded layer over thickness and modulus. Curves
+are solved once and stored ($ADHESION_CACHE). accuracy: the speed-accuracy trade of the solvers'
+settings (`validation.accuracy`; not part of all); bench: timings of the main operations, for
+comparing versions."""
 
 import json
 import sys
@@ -21,6 +22,7 @@ from fem_asperity.solver.solve import MU_RANGE
 
 from .closed_forms import closed_form_checks
 from .law_figure import law_table, plot_laws
+from .layered import section as layered_section
 from .report import PENDING, provenance, render
 from .rough_surface import COMPARISON_MU
 from .rough_surface import run as run_rough_surface
@@ -50,6 +52,13 @@ ROUGH_FILES = (
     ("rough_surface.md", "the rough-surface section of the report on its own"),
 )
 
+LAYERED_FILES = (
+    ("layered/report.md", "maps over thickness and modulus, limits, coated rough surface, FE "
+                          "against the layered BEM"),
+    ("layered/layered.json", "the same as data"),
+    ("layered/map.png", "pull-off and jump-in over (t, M) for each mu"),
+)
+
 
 def build_parser():
     parser = Parser(prog=PROG, description=__doc__)
@@ -60,9 +69,17 @@ def build_parser():
     single = commands.add_parser("single-asperity",
                                  help="Figs. 3-7: the paper's fitted laws judged against FE sweeps")
     rough = commands.add_parser("rough-surface", help="Figs. 9-13, verdicts, paper vs solved law")
-    for command in (single, rough):
+    layers = commands.add_parser("layered", help="layered media: maps over thickness and modulus, "
+                                 "the homogeneous limits, a coated rough surface, FE vs BEM")
+    for command in (single, rough, layers):
         command.add_argument("--out", type=Path, default=Path("out"), help="output folder")
         command.add_argument("--json", action="store_true", help="print a JSON summary")
+    layers.add_argument("--accuracy", choices=tuple(PRESETS), default="default",
+                        help="accuracy of the layered curves (default)")
+    for command in (layers,):
+        command.add_argument("--jobs", type=int, help="worker processes (default: one per core)")
+        command.add_argument("--scheduler", metavar="ADDRESS",
+                             help="run the sweeps on this Dask scheduler (extra 'cluster')")
     for command in (everything, single):
         command.add_argument("--method", choices=("fem", "bem"), default="fem",
                              help="solver judged in the single-asperity sweep (default: fem; "
@@ -93,7 +110,7 @@ def build_parser():
     return parser
 
 
-def _step(i, text, total=7):
+def _step(i, text, total):
     print(f"[{i}/{total}] {text}", file=sys.stderr, flush=True)
 
 
@@ -116,26 +133,40 @@ def _single(out, args, first_step, total):
                     "refit": single["refit"]}
 
 
+def _layered(out, args, first_step, total):
+    """Run the layered stage; returns (its summary, the part for the overall one)."""
+    from .layered import run as run_layered
+
+    steps = iter(range(first_step, first_step + 2))
+    layered = run_layered(out, accuracy=args.accuracy, jobs=args.jobs, scheduler=args.scheduler,
+                          step=lambda text: _step(next(steps), text, total))
+    return layered, {"layered": {k: layered[k] for k in ("not_bracketed", "jump_created",
+                                                         "jump_removed", "failed")}}
+
+
 def run_all(out, command, args):
     """Write every output into `out`; return a summary dict."""
     start = time.perf_counter()
-    _step(1, "paper laws over mu (closed forms, Maugis-Dugdale)")
+    _step(1, "paper laws over mu (closed forms, Maugis-Dugdale)", 9)
     rows = law_table()
     table = {"method": "closed-form laws with the paper's constants (exact evaluation)",
              "constants": asdict(PAPER_LAWS), "rows": rows}
     write_atomic(out / "paper_laws.json", json.dumps(table, indent=1, allow_nan=False))
-    _step(2, "figure of the laws")
+    _step(2, "figure of the laws", 9)
     save_figure(plot_laws(rows), out / "paper_laws.png")
-    _step(3, "closed-form checks")
+    _step(3, "closed-form checks", 9)
     checks = closed_form_checks()
-    single, single_summary = _single(out, args, 4, 7)
-    rough, rough_summary = _rough(out, args, 6, 7)
-    files = FILES + SINGLE_FILES + ROUGH_FILES
+    single, single_summary = _single(out, args, 4, 9)
+    rough, rough_summary = _rough(out, args, 6, 9)
+    layered, layered_summary = _layered(out, args, 8, 9)
+    files = FILES + SINGLE_FILES + ROUGH_FILES + LAYERED_FILES
     wall_s = time.perf_counter() - start
     write_atomic(out / "report.md", render(checks, files, command, rough_section(rough),
-                                           single_section(single), wall_s=wall_s))
+                                           single_section(single), layered_section(layered),
+                                           wall_s=wall_s))
     return {"files": [name for name, _ in files],
             "checks": [c.as_dict() for c in checks], **single_summary, **rough_summary,
+            **layered_summary,
             "not_yet_available": [{"item": i, "needs": n} for i, n in PENDING],
             "wall_s": wall_s}
 
@@ -162,6 +193,8 @@ def _run(args, command, out):
         return {"files": [name for name, _ in SINGLE_FILES], **_single(out, args, 1, 2)[1]}
     if args.command == "rough-surface":
         return {"files": [name for name, _ in ROUGH_FILES], **_rough(out, args, 1, 2)[1]}
+    if args.command == "layered":
+        return {"files": [name for name, _ in LAYERED_FILES], **_layered(out, args, 1, 2)[1]}
     return run_all(out, command, args)
 
 
