@@ -1,0 +1,66 @@
+"""Benchmark: the large-μ runs of issue 19, timed as a user runs them, to compare commits.
+
+What is measured (each one curve through `solve_curve`, one at a time on an otherwise idle
+machine): the BEM `default` curve at μ = 10 alone and with its error estimate (the estimate's
+solve runs on the second core), the BEM `draft` curve at μ = 20, and the FE `default` curve at
+μ = 5; for each, the wall time, the grids, points and Newton iterations, and the events, so that
+a faster commit can be checked to give the same events within their estimates.
+
+    python benchmarks/large_mu.py            # minutes → benchmarks/results/large_mu.{md,json}
+    python benchmarks/large_mu.py --quick    # μ = 10 draft only → large_mu-quick.*
+    python benchmarks/large_mu.py --tag before   # → large_mu-before.{md,json}, to compare
+"""
+
+import argparse
+import sys
+import time
+
+from provenance import add_output_options, provenance, write_results
+
+from fem_asperity.plumbing.cli import ProgressBar
+from fem_asperity.solver.solve import solve_curve
+
+#: (label, μ, method, accuracy, with the error estimate). The targets of issue 19 name these.
+RUNS = (("BEM default, mu = 10", 10.0, "bem", "default", False),
+        ("BEM default, mu = 10, with estimate", 10.0, "bem", "default", True),
+        ("BEM draft, mu = 20", 20.0, "bem", "draft", False),
+        ("FE default, mu = 5", 5.0, "fem", "default", False))
+QUICK_RUNS = (("BEM draft, mu = 10", 10.0, "bem", "draft", False),)
+KEYS = ("p_off", "delta_oc", "a_c", "delta_jump_in", "delta_jump_out")
+
+
+def one(label, mu, method, accuracy, estimate):
+    start = time.perf_counter()
+    result = solve_curve(mu, method=method, accuracy=accuracy, error_estimate=estimate,
+                         progress=ProgressBar(label))
+    wall = time.perf_counter() - start
+    record = result.records()
+    return {"run": label, "wall_s": wall, "status": result.status, "points": result.points,
+            "newton_iterations": result.newton_iterations,
+            "surface_nodes": result.surface_nodes, "message": result.message,
+            **{k: record[k] for k in KEYS},
+            **{f"{k}_err": (result.error_estimate or {}).get(k) for k in KEYS}}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    add_output_options(parser)
+    parser.add_argument("--tag", help="suffix of the results' name (large_mu-TAG.md), e.g. "
+                                      "'before' and 'after' a change")
+    args = parser.parse_args()
+    prov = provenance()
+    rows = [one(*run) for run in (QUICK_RUNS if args.quick else RUNS)]
+    lines = ["| run | wall s | status | points | Newton iterations | largest grid | P̄off | ± | "
+             "δ̄oc | ± |", "|---|---|---|---|---|---|---|---|---|---|"]
+    lines += [f"| {r['run']} | {r['wall_s']:.1f} | {r['status']} | {r['points']} | "
+              f"{r['newton_iterations']} | {r['surface_nodes']} | {r['p_off']:.8f} | "
+              f"{r['p_off_err'] or float('nan'):.1e} | {r['delta_oc']:.6f} | "
+              f"{r['delta_oc_err'] or float('nan'):.1e} |" for r in rows]
+    name = "large_mu" + (f"-{args.tag}" if args.tag else "")
+    paths = write_results(name, "Large mu: wall time of the issue-19 runs", prov, lines,
+                          {"rows": rows}, out=args.out, quick=args.quick)
+    print("wrote " + ", ".join(map(str, paths)), file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
