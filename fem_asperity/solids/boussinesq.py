@@ -11,7 +11,7 @@ Q(m₁) = K(m₁)/π analytic, and the whole kernel is singular on the circle |s
 s-plane. The integral over each element of the radial grid is therefore done in three ways:
 
 - far from r (distance ≥ the element's length): Gauss-Legendre, 8 points, error ≈ 5.8⁻¹⁶, and
-  fewer (4, 2) where that is as accurate (`_FAR_TIERS`);
+  4 from 9 lengths on, where that is as accurate (`_NEAR`);
 - near r: as ∫_r^b − ∫_r^a, each split into pieces that double in length away from r, so that
   every piece is at least its own length away from the singular circle;
 - on the piece that starts at r: the log term −2 f Q̃(m₁) ln|s−r| (Q̃ the Taylor polynomial of
@@ -71,11 +71,10 @@ def _unit_gauss(n):
 _GL = _unit_gauss(_POINTS)
 _LOG = log_gauss(_POINTS)
 #: Far-field rules by the distance from r to an element, in element lengths: Gauss-Legendre with
-#: 8, 4, 2 points, whose error ρ^(−2n) (ρ = x + √(x² − 1), x = 1 + 2 × distance/length) is at
-#: most the 8-point rule's at one length, 5.7e-13;
+#: 8 points from 1 to 9 lengths (`_NEAR`), 4 beyond, whose error ρ^(−2n) (ρ = x + √(x² − 1),
+#: x = 1 + 2 × distance/length) is at most the 8-point rule's at one length, 5.7e-13;
 #: test_bem.py::test_displacement_matrix_matches_adaptive_quadrature.
-_FAR_TIERS = ((1.0, 9.0), (9.0, 300.0), (300.0, np.inf))
-_FAR_RULES = tuple(_unit_gauss(n) for n in (8, 4, 2))
+_NEAR, _NEAR_RULE, _FAR_RULE = (1.0, 9.0), _unit_gauss(8), _unit_gauss(4)
 
 
 def kernel(r, s):
@@ -141,14 +140,20 @@ def displacement_matrix(nodes, r):
     for start in range(0, r.size, rows):
         rr = r[start:start + rows]
         ratio = np.maximum(a - rr[:, None], rr[:, None] - b) / length  # < 0 inside an element
-        ratio[rr == 0.0] = _FAR_TIERS[-1][0]  # the kernel is 2 at r = 0: any rule is exact
-        i0, i1 = np.empty(ratio.size), np.empty(ratio.size)
-        for (lowest, highest), (x, wx) in zip(_FAR_TIERS, _FAR_RULES):
-            pairs = np.flatnonzero((ratio >= lowest) & (ratio < highest))
-            q, e = np.divmod(pairs, a.size)
-            k = kernel(rr[q, None], a[e, None] + length[e, None] * x) * (wx * length[e, None])
-            i0[pairs], i1[pairs] = k.sum(1), k @ x
-        pairs = np.flatnonzero(ratio < _FAR_TIERS[0][0])
+        ratio[rr == 0.0] = np.inf  # the kernel is 2 at r = 0: any rule is exact
+        # Every pair by the far rule, broadcast over contiguous arrays (gathering the pairs of
+        # each tier cost more than the kernel); then the nearer pairs again, by their rules.
+        x, wx = _FAR_RULE
+        with np.errstate(divide="ignore", invalid="ignore"):  # s = r: those pairs are redone
+            k = kernel(rr[:, None, None], a[:, None] + length[:, None] * x) * (
+                wx * length[:, None])
+        i0, i1 = k.sum(-1).ravel(), (k @ x).ravel()
+        pairs = np.flatnonzero((ratio >= _NEAR[0]) & (ratio < _NEAR[1]))
+        q, e = np.divmod(pairs, a.size)
+        x, wx = _NEAR_RULE
+        k = kernel(rr[q, None], a[e, None] + length[e, None] * x) * (wx * length[e, None])
+        i0[pairs], i1[pairs] = k.sum(1), k @ x
+        pairs = np.flatnonzero(ratio < _NEAR[0])
         q, e = np.divmod(pairs, a.size)
         hi0, hi1 = _from_point(rr[q], b[e], a[e], length[e])
         lo0, lo1 = _from_point(rr[q], a[e], a[e], length[e])
