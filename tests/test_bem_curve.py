@@ -37,9 +37,12 @@ def test_bem_result_provenance():
     assert "2 folds" in result.message and result.folds == 2 and not result.ripples
 
 
-def test_bem_refuses_a_layer():
+def test_edge_following_grids_refuse_a_layer_and_methods_are_checked():
+    """A layer takes one uniform grid (`solve_curve` chooses it; the edge-following grids would
+    rebuild its correction on every grid and refuse it)."""
+    edge = discretisation(10.0, "draft", method="bem", track_edge=True)
     with pytest.raises(InputError, match="homogeneous"):
-        solve_curve(1.0, method="bem", solid=Solid(layer_thickness=1.0))
+        edge.grids(10.0, solid=Solid(layer_thickness=1.0))
     with pytest.raises(InputError, match="method"):
         solve_curve(1.0, method="spectral")
 

@@ -33,6 +33,11 @@ from .surface import TIP_GAP, LJSurface
 #: room for the slowest landing met, the jump-out at μ = 46.9, whose crack tip shrinks to 0
 #: starting next to the fold, where the descent creeps. Not pinned by a test.
 LANDING_STAGE, MAX_STAGES = 100, 500
+#: A grid built while the edges move is centred AHEAD × band beyond them in the direction they
+#: came from (`EdgeGrids._ahead`), so they cross (AHEAD + ½) of a band before leaving it, not ½:
+#: on a branch the edges move one way, and fewer grids are built.
+#: test_tracking.py::test_grids_ahead_of_the_edges_build_fewer_grids_for_the_same_curve.
+AHEAD = 0.4
 _STIFFEST_SLOPE = float(scaled_traction_slope(TIP_GAP))
 
 
@@ -122,19 +127,33 @@ class EdgeGrids:
             return built is not None and built[1] == edges[1]
         return max(abs(edges[0] - built[0]), abs(edges[1] - built[1])) <= reach
 
-    def _grid(self, surface, w, delta, edges):
-        """Nodes of the grid for the state (w, δ̄o) with its (ā_c, tip) `edges`; the elements
-        away from the band are sized for the gaps as if the tip had moved by half a band
-        either way (the smaller `spring_ratio` of the two), so the grid holds while it fits."""
+    def _grid(self, surface, w, delta, edges, centre):
+        """Nodes of the grid centred at the (ā_c, tip) `centre` for the state (w, δ̄o) with its
+        `edges`; the elements away from the band are sized for the gaps as if the tip had moved
+        to half a band either side of the centre (the smaller `spring_ratio` of the two), so
+        the grid holds while it fits."""
         gaps = delta + surface.node_profile - w
-        r, shift = surface.r_nodes, 0.5 * self.band
-        smaller = np.minimum(np.interp(r - shift, r, gaps), np.interp(r + shift, r, gaps))
+        r, offset, half = surface.r_nodes, centre[1] - edges[1], 0.5 * self.band
+        smaller = np.minimum(np.interp(r - (offset - half), r, gaps),
+                             np.interp(r - (offset + half), r, gaps))
 
         def gap(radius):
             return np.interp(radius, r, smaller)
 
-        return edge_grid(*edges, gap, h=self.h, band=self.band, r_max=self.r_max,
+        return edge_grid(*centre, gap, h=self.h, band=self.band, r_max=self.r_max,
                          growth=self.growth, h_inside=self.h_inside)
+
+    def _ahead(self, surface, edges):
+        """Where to centre the next grid: `edges` moved AHEAD of a band on in the direction
+        they moved from the centre of `surface`'s grid (as they are, if that is the pre-contact
+        grid), ā_c kept within [0, tip]."""
+        built = self._built_for.get(surface)
+        if built is None or built[1] == 0.0:
+            return edges
+        step = AHEAD * self.band
+        tip = edges[1] + step * np.sign(edges[1] - built[1])
+        edge = edges[0] + step * np.sign(edges[0] - built[0])
+        return float(min(max(edge, 0.0), tip)), float(tip)
 
     def land(self, surface, w, delta, *, tol=1e-9):
         """(surface, w, Newton iterations): the stable state at δ̄o downhill from w
@@ -174,12 +193,15 @@ class EdgeGrids:
         """(surface, w) of the state (w, δ̄o) moved to the grid of its edges (the pre-contact
         grid without contact), w interpolated linearly."""
         edges = self._edges(surface, w, delta)
-        if edges[1] + self.band >= self.r_max:  # a state no grid of this traction radius holds
+        if edges[1] + (1.0 + AHEAD) * self.band >= self.r_max:  # no grid of this radius holds it
             raise ContinuationError(f"the crack tip ({edges[1]:.4g} sqrt(R eps)) left the "
                                     f"traction radius {self.r_max:g} at δ = {delta:.6g}; the "
                                     "discretisation is too coarse for this mu")
-        new = (self._surface(self._grid(surface, w, delta, edges), edges)
-               if edges[1] > 0.0 else self.start)
+        if edges[1] > 0.0:
+            centre = self._ahead(surface, edges)
+            new = self._surface(self._grid(surface, w, delta, edges, centre), centre)
+        else:
+            new = self.start
         self.regrids += 1
         self.largest_nodes = max(self.largest_nodes, new.r_nodes.size)
         return new, np.interp(new.r_nodes, surface.r_nodes, w)
