@@ -133,13 +133,14 @@ def _single(out, args, first_step, total):
                     "refit": single["refit"]}
 
 
-def _layered(out, args, first_step, total):
+def _layered(out, args, first_step, total, command):
     """Run the layered stage; returns (its summary, the part for the overall one)."""
     from .layered import run as run_layered
 
     steps = iter(range(first_step, first_step + 2))
     layered = run_layered(out, accuracy=args.accuracy, jobs=args.jobs, scheduler=args.scheduler,
-                          step=lambda text: _step(next(steps), text, total))
+                          step=lambda text: _step(next(steps), text, total),
+                          header=provenance(command))
     return layered, {"layered": {k: layered[k] for k in ("not_bracketed", "jump_created",
                                                          "jump_removed", "failed")}}
 
@@ -158,7 +159,7 @@ def run_all(out, command, args):
     checks = closed_form_checks()
     single, single_summary = _single(out, args, 4, 9)
     rough, rough_summary = _rough(out, args, 6, 9)
-    layered, layered_summary = _layered(out, args, 8, 9)
+    layered, layered_summary = _layered(out, args, 8, 9, command)
     files = FILES + SINGLE_FILES + ROUGH_FILES + LAYERED_FILES
     wall_s = time.perf_counter() - start
     write_atomic(out / "report.md", render(checks, files, command, rough_section(rough),
@@ -194,7 +195,8 @@ def _run(args, command, out):
     if args.command == "rough-surface":
         return {"files": [name for name, _ in ROUGH_FILES], **_rough(out, args, 1, 2)[1]}
     if args.command == "layered":
-        return {"files": [name for name, _ in LAYERED_FILES], **_layered(out, args, 1, 2)[1]}
+        return {"files": [name for name, _ in LAYERED_FILES],
+                **_layered(out, args, 1, 2, command)[1]}
     return run_all(out, command, args)
 
 

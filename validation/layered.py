@@ -184,9 +184,10 @@ def _edges(values):
     return np.exp(np.concatenate([[v[0] - half[0]], v[:-1] + half, [v[-1] + half[-1]]]))
 
 
-def run(out, *, accuracy="default", jobs=None, scheduler=None, step=print):
-    """Maps, limits, coated rough surface and the FE check; write out/layered/{report.md,
-    layered.json, map.png}. Returns the summary (the JSON)."""
+def run(out, *, accuracy="default", jobs=None, scheduler=None, step=print, header=""):
+    """Maps, limits, coated rough surface and the FE check; write out/layered/{report.md (after
+    `header`, e.g. the provenance line), layered.json, map.png}. Returns the summary (the
+    JSON)."""
     folder = out / "layered"
     rows, cost = run_map(accuracy=accuracy, jobs=jobs, scheduler=scheduler, step=step)
     step("layered: coated rough surface (GW) and the FE against the layered BEM")
@@ -204,7 +205,7 @@ def run(out, *, accuracy="default", jobs=None, scheduler=None, step=print):
                "coated_rough_surface": rough, "fe_checks": checks, "cost": cost,
                "solids": [asdict(_solid(t, m)) for t in THICKNESSES for m in RATIOS]}
     write_atomic(folder / "layered.json", json.dumps(summary, indent=1, allow_nan=False) + "\n")
-    write_atomic(folder / "report.md", section(summary))
+    write_atomic(folder / "report.md", (header + "\n\n" if header else "") + section(summary))
     return summary
 
 
