@@ -1,6 +1,7 @@
 """The explicit interfaces: both solids are `ElasticSurface`s, both grid kinds `Grids`, and each
 method has its own discretisation type whose refinements touch its own fields."""
 
+import numpy as np
 import pytest
 
 from fem_asperity.path.grids import EdgeGrids, FixedGrid, Grids
@@ -51,8 +52,10 @@ def test_refinements_keep_the_type_and_scale_its_lengths(mu, method, track, kind
         assert partner.h_contact == fine.h_contact / 2 and partner.band == fine.band
 
 
-@pytest.mark.parametrize("track", [None, True])
-def test_boundary_integral_discretisations_refuse_a_layer(track):
-    disc = discretisation(2.0, "draft", method="bem", track_edge=track)
+def test_the_uniform_boundary_integral_takes_a_layer_the_edge_grids_refuse_it():
+    layer = Solid(layer_thickness=1.0, layer_modulus_ratio=0.5)
+    uniform = discretisation(2.0, "draft", method="bem").grids(2.0, solid=layer)
+    homogeneous = discretisation(2.0, "draft", method="bem").grids(2.0)
+    assert not np.allclose(uniform.elastic.compliance, homogeneous.elastic.compliance)
     with pytest.raises(InputError, match="homogeneous"):
-        disc.grids(2.0, solid=Solid(layer_thickness=1.0))
+        discretisation(2.0, "draft", method="bem", track_edge=True).grids(2.0, solid=layer)
