@@ -34,10 +34,11 @@ from .surface import TIP_GAP, LJSurface
 #: starting next to the fold, where the descent creeps. Not pinned by a test.
 LANDING_STAGE, MAX_STAGES = 100, 500
 #: A grid built while the edges move is centred AHEAD × band beyond them in the direction they
-#: came from (`EdgeGrids._ahead`), so they cross (AHEAD + ½) of a band before leaving it, not ½:
-#: on a branch the edges move one way, and fewer grids are built.
+#: are moving (`EdgeGrids._ahead`), so they cross (AHEAD + ½) of a band before leaving it, not
+#: ½: on a branch the edges move one way, and fewer grids are built. An edge that moved less
+#: than STILL × band since the last grid counts as still (round-off must not move its band).
 #: test_tracking.py::test_grids_ahead_of_the_edges_build_fewer_grids_for_the_same_curve.
-AHEAD = 0.4
+AHEAD, STILL = 0.4, 0.05
 _STIFFEST_SLOPE = float(scaled_traction_slope(TIP_GAP))
 
 
@@ -144,16 +145,20 @@ class EdgeGrids:
                          growth=self.growth, h_inside=self.h_inside)
 
     def _ahead(self, surface, edges):
-        """Where to centre the next grid: `edges` moved AHEAD of a band on in the direction
-        they moved from the centre of `surface`'s grid (as they are, if that is the pre-contact
-        grid), ā_c kept within [0, tip]."""
+        """Where to centre the next grid: each of `edges` moved AHEAD × band further in the
+        direction it moved from the centre of `surface`'s grid (not if it moved less than
+        STILL × band, nor from the pre-contact grid), ā_c kept within [0, tip]."""
         built = self._built_for.get(surface)
         if built is None or built[1] == 0.0:
             return edges
-        step = AHEAD * self.band
-        tip = edges[1] + step * np.sign(edges[1] - built[1])
-        edge = edges[0] + step * np.sign(edges[0] - built[0])
-        return float(min(max(edge, 0.0), tip)), float(tip)
+
+        def on(now, then):
+            moved = now - then
+            return now + (AHEAD * self.band * np.sign(moved)
+                          if abs(moved) > STILL * self.band else 0.0)
+
+        tip = on(edges[1], built[1])
+        return float(min(max(on(edges[0], built[0]), 0.0), tip)), float(tip)
 
     def land(self, surface, w, delta, *, tol=1e-9):
         """(surface, w, Newton iterations): the stable state at δ̄o downhill from w
@@ -193,12 +198,12 @@ class EdgeGrids:
         """(surface, w) of the state (w, δ̄o) moved to the grid of its edges (the pre-contact
         grid without contact), w interpolated linearly."""
         edges = self._edges(surface, w, delta)
-        if edges[1] + (1.0 + AHEAD) * self.band >= self.r_max:  # no grid of this radius holds it
+        centre = self._ahead(surface, edges)
+        if centre[1] + self.band >= self.r_max:  # a state no grid of this traction radius holds
             raise ContinuationError(f"the crack tip ({edges[1]:.4g} sqrt(R eps)) left the "
                                     f"traction radius {self.r_max:g} at δ = {delta:.6g}; the "
                                     "discretisation is too coarse for this mu")
         if edges[1] > 0.0:
-            centre = self._ahead(surface, edges)
             new = self._surface(self._grid(surface, w, delta, edges, centre), centre)
         else:
             new = self.start
