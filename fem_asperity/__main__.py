@@ -68,7 +68,8 @@ def build_parser():
                        help="layer thickness: in m with physical inputs, else t / sqrt(R eps) "
                             "(omit: homogeneous half-space)")
     curve.add_argument("--layer-modulus-ratio", type=float,
-                       help="E*_layer / E*_substrate (default: 1)")
+                       help="E*_layer / E*_substrate (default: 1); with physical inputs E* (or "
+                            "--E1 --nu1) is the substrate's and the sphere rigid")
     curve.add_argument("--layer-E", dest="layer_E", type=float,
                        help="layer's Young's modulus [Pa] (physical inputs; with --layer-nu, "
                             "instead of --layer-modulus-ratio; the sphere must be rigid)")
@@ -250,16 +251,19 @@ def _solid(args, parser, scales):
     if args.layer_thickness is None and any(v is not None for v in layered):
         parser.error("curve: --layer-modulus-ratio, --layer-E and --layer-nu need "
                      "--layer-thickness")
+    if args.nu is not None and args.nu1 is not None and args.nu != args.nu1:
+        parser.error("curve: --nu and --nu1 are the half-space's Poisson's ratio; give one")
     nu = next(v for v in (args.nu, args.nu1, 0.3) if v is not None)
     layer_nu = nu if args.layer_nu is None else args.layer_nu
     thickness, ratio = args.layer_thickness, args.layer_modulus_ratio
+    if thickness is not None and args.E2 is not None:
+        parser.error("curve: a layer needs a rigid sphere (no --E2 --nu2): E* lumps the "
+                     "sphere's compliance into a homogeneous half-space only; with a layer, "
+                     "--E-star or --E1 --nu1 is the substrate's")
     if args.layer_E is not None:
         if scales is None or ratio is not None:
             parser.error("curve: --layer-E goes with the physical inputs, instead of "
                          "--layer-modulus-ratio")
-        if args.E2 is not None:
-            parser.error("curve: a layer needs a rigid sphere (no --E2): E* lumps the sphere's "
-                         "compliance into a homogeneous half-space only")
         layer_e_star = positive("--layer-E", args.layer_E, unit="Pa") / (1.0 - layer_nu**2)
         ratio = layer_e_star / scales.E_star
     if thickness is not None and scales is not None:  # m → √(Rε)
@@ -274,6 +278,7 @@ def _si_text(key, value):
 
 
 def _sweep(args, parser):
+    from .studies.store import mu_key
     from .studies.sweep import mu_range, sweep
 
     if (args.mu is None and args.mu_range is None) != physical_given(args):
@@ -282,6 +287,9 @@ def _sweep(args, parser):
     out = writable_folder(args.out, "--out")  # before solving
     mus = ([s.mu for s in scales] if scales else
            mu_range(*args.mu_range) if args.mu_range else args.mu)
+    if scales and len({mu_key(mu) for mu in mus}) < len(mus):
+        parser.error("sweep: two sets of physical inputs give the same mu (a sweep solves by "
+                     "mu); vary the inputs so that mu changes")
     bar = ProgressBar(f"{args.method.upper()} sweep of {len(mus)} mu", time_left=True)
     result = sweep(mus, method=args.method, accuracy=args.accuracy,
                    error_estimate=not args.no_error_estimate, jobs=args.jobs,

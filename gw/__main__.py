@@ -195,7 +195,8 @@ def main(argv=None):
     if scales is not None:
         columns |= _si(scales, args, d, force, area)
     if args.json:
-        si = {"si": {k: v.tolist() for k, v in columns.items() if k not in "dFS"}} if scales else {}
+        si = ({"si": {k: v.tolist() for k, v in columns.items() if k not in ("d", "F", "S")}}
+              if scales else {})
         dump_json(head | {k: columns[k].tolist() for k in "dFS"} | si)
     else:
         print_table([dict(zip(columns, row)) for row in zip(*columns.values())], tuple(columns))

@@ -90,9 +90,8 @@ def test_validation_all_writes_its_files(tmp_path):
     assert done.returncode == 0, done.stderr
     summary = json.loads(done.stdout)
     assert sorted(p.name for p in out.iterdir()) == [
-        "law_comparison.png", "paper_laws.json", "paper_laws.png", "report.md",
-        "layered", "rough_surface.json", "rough_surface.md", "rough_surface.png",
-        "single_asperity"]
+        "law_comparison.png", "layered", "paper_laws.json", "paper_laws.png", "report.md",
+        "rough_surface.json", "rough_surface.md", "rough_surface.png", "single_asperity"]
     assert sorted(p.name for p in (out / "layered").iterdir()) == [
         "layered.json", "map.png", "report.md"]
     assert summary["layered"]["failed"] == []
@@ -216,7 +215,13 @@ def test_curve_json_files_and_progress(tmp_path):
      "--layer-thickness", "-1e-9"],
     ["curve", "--E-star", "1e11", "--dgamma", "0.05", "--eps", "3e-10", "--R", "1e-6",
      "--layer-E", "1e9"],
+    ["curve", "--E1", "1e11", "--nu1", "0.3", "--E2", "1e11", "--nu2", "0.3", "--dgamma", "0.05",
+     "--eps", "3e-10", "--R", "1e-6", "--layer-thickness", "1e-9", "--layer-modulus-ratio", "2"],
+    ["curve", "--E1", "1e11", "--nu1", "0.3", "--nu", "0.4", "--dgamma", "0.05", "--eps",
+     "3e-10", "--R", "1e-6"],
     # the other commands' physical inputs
+    ["sweep", "--out", "x", "--E-star", "1e11", "2e11", "--dgamma", "0.05", "0.1", "--eps",
+     "3e-10", "--R", "1e-6"],
     ["sweep", "--out", "x", "--mu", "1", "--E-star", "1e11", "--dgamma", "0.05", "--eps",
      "3e-10", "--R", "1e-6"],
     ["sweep", "--out", "x", "--E-star", "1e11", "2e11", "--dgamma", "0.05", "0.1", "0.2",

@@ -92,6 +92,8 @@ def _judged(row):
     lay, sub, top = row["layered"], row["substrate"], row["layer"]
     if lay is None:
         return {"bracketed": None, "position": None, "jump": "failed"}
+    if sub is None or top is None:
+        return {"bracketed": None, "position": None, "jump": "limit failed"}
     slack = sum(x["p_off_err"] or 0.0 for x in (lay, sub, top))
     lo, hi = sorted((sub["p_off"], top["p_off"]))
     span = top["p_off"] - sub["p_off"]

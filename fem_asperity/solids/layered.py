@@ -35,8 +35,9 @@ K_PANEL_R, K_POINTS = 8.0, 22
 #: Elements with k·length up to this are integrated by Gauss (the exact antiderivatives
 #: cancel there), longer ones exactly. test_hat_transforms_match_brute_force_quadrature.
 GAUSS_BELOW, GAUSS_POINTS = 2.0, 6
-#: k values per block of the correction's sum (bounds the memory at ~40 MB for 600 nodes).
-K_BLOCK = 8192
+#: (k value, node) entries per block of the correction's sum: `hat_transforms` holds about eight
+#: arrays of that size at once, so a block takes about 130 MB whatever the number of nodes.
+K_BLOCK_ENTRIES = 2_000_000
 
 
 def compliance_factor(kt, modulus_ratio, nu_layer, nu_substrate):
@@ -117,13 +118,15 @@ def k_rule(thickness, r_max):
 def layer_correction(nodes, solid):
     """D (n × n): the Galerkin coupling of the hat functions on `nodes` that the layer of `solid`
     (`fe.Solid`: thickness t in √(Rε), E*_layer/E*_substrate, Poisson's ratios) adds to its
-    layer's half-space, (2/M) ∫ (C(kt) − 1) φ̃_i φ̃_j dk, summed in blocks of K_BLOCK."""
+    layer's half-space, (2/M) ∫ (C(kt) − 1) φ̃_i φ̃_j dk, summed in blocks of k values
+    (K_BLOCK_ENTRIES)."""
     t, ratio = solid.layer_thickness, solid.layer_modulus_ratio
     k, weights = k_rule(t, float(np.max(nodes)))
     factor = weights * (compliance_factor(k * t, ratio, solid.layer_nu, solid.nu) - 1.0)
     correction = np.zeros((len(nodes), len(nodes)))
-    for start in range(0, k.size, K_BLOCK):
-        block = slice(start, start + K_BLOCK)
+    rows = max(256, K_BLOCK_ENTRIES // len(nodes))
+    for start in range(0, k.size, rows):
+        block = slice(start, start + rows)
         phi = hat_transforms(nodes, k[block])
         correction += phi.T @ (factor[block, None] * phi)
     return (2.0 / ratio) * correction

@@ -3,7 +3,7 @@ cantilever's deflection against the piezo position, and (FE) VTU + PNG fields at
 
 Field units (`field_units`): coordinates and displacements in one length unit, m with physical
 inputs or √(Rε) with the exact sphere (a Derjaguin result has no R/ε: displacements stay in ε,
-named u_eps); stresses in Pa with physical inputs, else Δγ/ε (the LJ traction unit, so
+named "u [eps]"); stresses in Pa with physical inputs, else Δγ/ε (the LJ traction unit, so
 σ_zz ≈ −p̄ on the surface). `write_all` writes all files or none (a staging folder).
 """
 

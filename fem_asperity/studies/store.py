@@ -77,11 +77,14 @@ def curve_folder(mu, *, method, accuracy, error_estimate, unstable_branch=False,
                  cache=None):
     """Where the curve at (`mu`, method, accuracy, solid) of this solver revision is stored;
     curves with and without the error estimate, and with the whole equilibrium curve
-    (`unstable_branch`), are kept apart (each costs more); a layered solid adds its layer."""
+    (`unstable_branch`), are kept apart (each costs more); a solid other than the default adds
+    its Poisson's ratio and layer."""
     extras = ("-estimated" if error_estimate else "") + ("-whole" if unstable_branch else "")
     if solid.layer_thickness is not None:
         extras += (f"-layer-t{solid.layer_thickness:.12g}-M{solid.layer_modulus_ratio:.12g}"
                    f"-nu{solid.nu:.12g}-{solid.layer_nu:.12g}")
+    elif solid != Solid():  # ν enters the FE's truncation
+        extras += f"-nu{solid.nu:.12g}"
     name = f"{method}-{accuracy}{extras}-mu{mu_key(mu):.12g}-{solver_revision()}"
     return Path(cache or cache_dir()) / name
 
