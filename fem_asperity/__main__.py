@@ -136,17 +136,14 @@ def _laws(args, parser):
         parser.error(f"laws: give either --mu or the physical inputs ({USAGE})")
     scales = physical_scales(args, parser.error, "laws")
     rows = PAPER_LAWS.events([scales.mu] if scales else args.mu).records()
-    si_columns = ()
-    if scales is not None:
-        for row in rows:
-            row["si"] = scales.to_si(row)
-        si_columns = tuple(scales.si_columns(rows[0]))
+    si = scales.si_columns(rows[0]) if scales else {}  # physical inputs: one mu, one row
+    if scales:
+        rows[0]["si"] = scales.to_si(rows[0])
     if args.json:
         dump_json(rows)  # a list, one object per mu, whatever their number
     else:
         print(LAWS_LEGEND)
-        print_table([row | (scales.si_columns(row) if scales else {}) for row in rows],
-                    EVENT_COLUMNS + si_columns)
+        print_table([rows[0] | si] if scales else rows, EVENT_COLUMNS + tuple(si))
 
 
 def _scales(args, parser):

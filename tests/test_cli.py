@@ -120,6 +120,12 @@ def test_validation_all_writes_its_files(tmp_path):
     assert (out / "paper_laws.png").read_bytes()[:4] == b"\x89PNG"
 
 
+def test_validation_bad_jobs_is_one_line_before_any_work(tmp_path):
+    done = cli("validation", "layered", "--jobs", "0", "--out", str(tmp_path / "out"))
+    assert done.returncode == 2 and len(done.stderr.strip().splitlines()) == 1, done.stderr
+    assert not (tmp_path / "out").exists()
+
+
 def test_validation_all_unwritable_output_is_one_line_and_writes_nothing(tmp_path):
     blocker = tmp_path / "taken"
     blocker.write_text("a file where a folder is needed")

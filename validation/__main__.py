@@ -215,7 +215,10 @@ def _tell(args, summary):
 
 
 def main(argv=None):
-    args = build_parser().parse_args(argv)
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if getattr(args, "jobs", None) is not None and args.jobs < 1:
+        parser.error(f"--jobs must be a whole number >= 1; got {args.jobs}")  # before any work
     if args.command == "bench":
         from .bench import run as run_bench
 

@@ -197,16 +197,14 @@ class EdgeGrids:
     def _moved(self, surface, w, delta):
         """(surface, w) of the state (w, δ̄o) moved to the grid of its edges (the pre-contact
         grid without contact), w interpolated linearly."""
-        edges = self._edges(surface, w, delta)
-        centre = self._ahead(surface, edges)
-        if centre[1] + self.band >= self.r_max:  # a state no grid of this traction radius holds
-            raise ContinuationError(f"the crack tip ({edges[1]:.4g} sqrt(R eps)) left the "
-                                    f"traction radius {self.r_max:g} at δ = {delta:.6g}; the "
-                                    "discretisation is too coarse for this mu")
+        edges, new = self._edges(surface, w, delta), self.start
         if edges[1] > 0.0:
+            centre = self._ahead(surface, edges)
+            if centre[1] + self.band >= self.r_max:  # no grid of this traction radius holds it
+                raise ContinuationError(f"the crack tip ({edges[1]:.4g} sqrt(R eps)) left the "
+                                        f"traction radius {self.r_max:g} at δ = {delta:.6g}; "
+                                        "the discretisation is too coarse for this mu")
             new = self._surface(self._grid(surface, w, delta, edges, centre), centre)
-        else:
-            new = self.start
         self.regrids += 1
         self.largest_nodes = max(self.largest_nodes, new.r_nodes.size)
         return new, np.interp(new.r_nodes, surface.r_nodes, w)
