@@ -1,10 +1,13 @@
 """Benchmark: the large-μ runs of issue 19, timed as a user runs them, to compare commits.
 
-What is measured (each one curve through `solve_curve`, one at a time on an otherwise idle
-machine): the BEM `default` curve at μ = 10 alone and with its error estimate (the estimate's
-solve runs on the second core), the BEM `draft` curve at μ = 20, and the FE `default` curve at
-μ = 5; for each, the wall time, the grids, points and Newton iterations, and the events, so that
-a faster commit can be checked to give the same events within their estimates.
+What is measured (one at a time on an otherwise idle machine): single curves through
+`solve_curve`, the BEM `default` curve at μ = 10 alone and with its error estimate, the BEM
+`default` curve at μ = 5.7 with its estimate (the uniform grid's worst ratio of estimate to
+solve before issue 19), the BEM `draft` curve at μ = 20, and the FE `default` curve at μ = 5;
+for each, the wall time, points and Newton iterations, and the events, so that a faster commit
+can be checked to give the same events within their estimates. Then the sweep the issue names:
+20 log-spaced μ from 0.05 to 10, BEM `default` with estimates, on both cores, from an empty
+store.
 
     python benchmarks/large_mu.py            # minutes → benchmarks/results/large_mu.{md,json}
     python benchmarks/large_mu.py --quick    # μ = 10 draft only → large_mu-quick.*
@@ -13,20 +16,26 @@ a faster commit can be checked to give the same events within their estimates.
 
 import argparse
 import sys
+import tempfile
 import time
 
+import numpy as np
 from provenance import add_output_options, provenance, write_results
 
 from fem_asperity.plumbing.cli import ProgressBar
 from fem_asperity.solver.solve import solve_curve
+from fem_asperity.studies.sweep import sweep
 
 #: (label, μ, method, accuracy, with the error estimate). The targets of issue 19 name these.
 RUNS = (("BEM default, mu = 10", 10.0, "bem", "default", False),
         ("BEM default, mu = 10, with estimate", 10.0, "bem", "default", True),
+        ("BEM default, mu = 5.7, with estimate", 5.7, "bem", "default", True),
         ("BEM draft, mu = 20", 20.0, "bem", "draft", False),
         ("FE default, mu = 5", 5.0, "fem", "default", False))
 QUICK_RUNS = (("BEM draft, mu = 10", 10.0, "bem", "draft", False),)
 KEYS = ("p_off", "delta_oc", "a_c", "delta_jump_in", "delta_jump_out")
+#: The sweep of the issue: μ, and worker processes (one per core of the 2-core machine).
+SWEEP_MUS, SWEEP_JOBS = np.logspace(np.log10(0.05), 1.0, 20), 2
 
 
 def one(label, mu, method, accuracy, estimate):
@@ -40,6 +49,17 @@ def one(label, mu, method, accuracy, estimate):
             "surface_nodes": result.surface_nodes, "message": result.message,
             **{k: record[k] for k in KEYS},
             **{f"{k}_err": (result.error_estimate or {}).get(k) for k in KEYS}}
+
+
+def timed_sweep():
+    """Wall time (s) and statuses of the issue's sweep, from an empty store."""
+    with tempfile.TemporaryDirectory() as store:
+        start = time.perf_counter()
+        result = sweep(SWEEP_MUS, method="bem", accuracy="default", jobs=SWEEP_JOBS,
+                       cache=store, progress=ProgressBar("sweep"))
+        wall = time.perf_counter() - start
+    statuses = sorted({row.status for row in result.rows})
+    return wall, statuses
 
 
 def main():
@@ -56,6 +76,12 @@ def main():
               f"{r['newton_iterations']} | {r['surface_nodes']} | {r['p_off']:.8f} | "
               f"{r['p_off_err'] or float('nan'):.1e} | {r['delta_oc']:.6f} | "
               f"{r['delta_oc_err'] or float('nan'):.1e} |" for r in rows]
+    if not args.quick:
+        wall, statuses = timed_sweep()
+        lines += ["", f"Sweep of {SWEEP_MUS.size} mu from {SWEEP_MUS[0]:g} to {SWEEP_MUS[-1]:g}, "
+                  f"BEM default with estimates, {SWEEP_JOBS} processes, empty store: "
+                  f"{wall:.1f} s wall (statuses: {', '.join(statuses)})."]
+        rows.append({"run": "sweep", "wall_s": wall, "statuses": statuses})
     name = "large_mu" + (f"-{args.tag}" if args.tag else "")
     paths = write_results(name, "Large mu: wall time of the issue-19 runs", prov, lines,
                           {"rows": rows}, out=args.out, quick=args.quick)

@@ -152,20 +152,26 @@ def test_a_curve_above_the_onset_that_misses_its_jump_is_refined_until_it_jumps(
 
 def test_a_failing_error_estimate_never_costs_the_result(monkeypatch):
     """Whatever stops the estimate's solve (here an input error from inside it, as the grid of a
-    diverged state raised at mu = 9, BEM draft), the curve is kept without an estimate."""
+    diverged state raised at mu = 9, BEM draft), the curve is kept without an estimate: with
+    the estimate traced near the events and with a whole finer solve (the whole curve)."""
     import fem_asperity.solver.solve as solve
 
-    real = solve.solve_discretised
+    real = solve._solve_traced
 
-    def failing_estimate(mu, disc, **kwargs):
+    def failing(*args, **kwargs):
+        raise InputError("need 0 < h <= band (from inside the estimate's solve)")
+
+    def failing_whole(mu, disc, **kwargs):
         if disc.name.endswith("/estimate"):
-            raise InputError("need 0 < h <= band (from inside the estimate's solve)")
+            failing()
         return real(mu, disc, **kwargs)
 
-    monkeypatch.setattr(solve, "solve_discretised", failing_estimate)
-    result = solve.solve_curve(1.0, method="bem", accuracy="draft")
-    assert result.error_estimate is None and result.status == "no_estimate"
-    assert "InputError" in result.message and result.events.jump_in is not None
+    monkeypatch.setattr(solve, "events_near", failing)
+    monkeypatch.setattr(solve, "_solve_traced", failing_whole)
+    for whole in (False, True):
+        result = solve.solve_curve(1.0, method="bem", accuracy="draft", unstable_branch=whole)
+        assert result.error_estimate is None and result.status == "no_estimate"
+        assert "InputError" in result.message and result.events.jump_in is not None
 
 
 @pytest.mark.parametrize("mu, method", [
@@ -190,8 +196,8 @@ def test_a_rippling_curve_is_refined_and_reports_the_physical_jumps():
     disc = replace(discretisation(mu, "draft", method="bem"), h_surface=0.25 * mu**-1.5)
     rippled = solve_discretised(mu, disc)
     assert rippled.ripples and rippled.status == "ripples"
-    result, solved_on = _solve_refining(mu, disc, solid=Solid(), radius_ratio=None,
-                                        unstable_branch=False)
+    result, solved_on, _ = _solve_refining(mu, disc, solid=Solid(), radius_ratio=None,
+                                           unstable_branch=False, spring_constant=None)
     assert result.folds == 2 and result.status == "ok" and "refined 1 time" in result.message
     assert solved_on.h_surface == disc.h_surface / 2
     assert rippled.events.jump_out.delta == pytest.approx(result.events.jump_out.delta, rel=1e-3)
@@ -227,11 +233,12 @@ def test_progress_rises_to_one_at_the_end_only(mu, estimate):
 
 
 def test_an_interrupted_curve_stops_its_estimate_solve_too(monkeypatch):
-    """Ctrl-C (or an error) in the curve ends the estimate's longer solve at its next point
-    instead of waiting for it: the estimate's solve ends with `_Stopped`."""
+    """Ctrl-C (or an error) in a whole curve (`unstable_branch`) ends the estimate's longer
+    whole solve alongside at its next point instead of waiting for it: the estimate's solve
+    ends with `_Stopped`."""
     import fem_asperity.solver.solve as solve
 
-    real, ended = solve.solve_discretised, {}
+    real, ended = solve._solve_traced, {}
 
     def interrupted(mu, disc, **kwargs):
         if not disc.name.endswith("/estimate"):
@@ -242,7 +249,7 @@ def test_an_interrupted_curve_stops_its_estimate_solve_too(monkeypatch):
             ended["estimate"] = type(exc).__name__
             raise
 
-    monkeypatch.setattr(solve, "solve_discretised", interrupted)
+    monkeypatch.setattr(solve, "_solve_traced", interrupted)
     with pytest.raises(KeyboardInterrupt):
-        solve.solve_curve(3.0, method="bem", accuracy="fine")
+        solve.solve_curve(3.0, method="bem", accuracy="fine", unstable_branch=True)
     assert ended == {"estimate": "_Stopped"}

@@ -45,7 +45,7 @@ APPROACH_SHARE = 0.6
 RETRACTION_SHOWN_MAX = 0.98
 
 
-def _branch(grids, surface, w, delta, heading, settings, until, on_point):
+def follow_branch(grids, surface, w, delta, heading, settings, until, on_point):
     """(stable Trace from (w, δ) on `surface`, fold, state past the fold, surface at the end,
     landing): `_piece`s of the branch, moved to a new grid (`grids.land`, see `grids`) each
     time the contact edge leaves the current one's band; on a fixed grid, one piece. Where a
@@ -106,7 +106,7 @@ def _piece(surface, w, delta, heading, settings, until, on_point, admissible=Non
     return traced, fold, beyond
 
 
-def _jump(grids, surface, fold, beyond, settings, counter, landed=None):
+def land_jump(grids, surface, fold, beyond, settings, counter, landed=None):
     """Land past `fold` downhill from the unstable state `beyond`, on the grid of the landing
     (`grids.land`), or take the (surface, w) `landed` already: (surface, w, Jump)."""
     delta, before = fold
@@ -159,7 +159,7 @@ def stable_paths(grids: Grids, settings, progress=None):
     branches, starts, approach, jumps_in, heading = [], [], [], [], APPROACH
     while True:
         starts.append(surface)
-        branch, fold, beyond, surface, landed = _branch(grids, surface, w, delta, heading,
+        branch, fold, beyond, surface, landed = follow_branch(grids, surface, w, delta, heading,
                                                         settings, reached_end,
                                                         report if progress else None)
         branches.append(branch)
@@ -169,7 +169,7 @@ def stable_paths(grids: Grids, settings, progress=None):
         if len(jumps_in) >= MAX_JUMPS:
             raise ContinuationError(f"more than {MAX_JUMPS} jumps on approach")
         approach.append(dict(delta=fold[0], **fold[1], branch=len(jumps_in)))
-        surface, w, jump = _jump(grids, surface, fold, beyond, settings, traced, landed)
+        surface, w, jump = land_jump(grids, surface, fold, beyond, settings, traced, landed)
         jumps_in.append(jump)
         delta, heading = fold[0], _DOWN
     retraction, jumps_out, extra = _retract(grids, starts, settings, branches, traced, progress)
@@ -212,7 +212,7 @@ def _retract(grids, starts, settings, branches, counter, progress):
             return rows, jumps, extra
         surface, w, delta, skip = starts[j], branches[j].states[0], branches[j].delta[0], 1
         while True:
-            branch, fold, beyond, surface, landed = _branch(grids, surface, w, delta, _UP,
+            branch, fold, beyond, surface, landed = follow_branch(grids, surface, w, delta, _UP,
                                                             settings, far, report)
             extra.append(branch)
             rows += [point_row(branch, i, len(jumps)) for i in range(skip, len(branch.delta))]
@@ -221,7 +221,7 @@ def _retract(grids, starts, settings, branches, counter, progress):
             if len(jumps) >= MAX_JUMPS:
                 raise ContinuationError(f"more than {MAX_JUMPS} jumps on retraction")
             rows.append(dict(delta=fold[0], **fold[1], branch=len(jumps)))
-            surface, w, jump = _jump(grids, surface, fold, beyond, settings, counter, landed)
+            surface, w, jump = land_jump(grids, surface, fold, beyond, settings, counter, landed)
             jumps.append(jump)
             delta, skip = fold[0], 0
             known = _approach_branch(branches, delta, jump.x_after,

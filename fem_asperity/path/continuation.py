@@ -84,12 +84,14 @@ class TraceSettings:
     front: float | None = None
 
 
-_POINT_FIELDS = ("delta", "x", "p", "area", "a_c", "stable", "tangents", "states")
+_POINT_FIELDS = ("delta", "x", "p", "area", "a_c", "stable", "tangents", "states", "nodes")
 
 
 @dataclass
 class Trace:
-    """Raw continuation output, one entry per converged point, ordered along the curve."""
+    """Raw continuation output, one entry per converged point, ordered along the curve: the
+    observables, stability, unit tangent, state w and the radial nodes w is given on (those of
+    the surface it was solved on)."""
 
     delta: list = field(default_factory=list)
     x: list = field(default_factory=list)
@@ -99,6 +101,7 @@ class Trace:
     stable: list = field(default_factory=list)
     tangents: list = field(default_factory=list)
     states: list = field(default_factory=list)
+    nodes: list = field(default_factory=list)
     newton_iterations: int = 0
     rejected_steps: int = 0
 
@@ -123,7 +126,7 @@ class Trace:
         """As `append`, at position `index` along the curve."""
         area, radius = contact
         values = (delta, surface.centre_gap(w, delta), force, area, radius, stable, tangent,
-                  w.copy())
+                  w.copy(), surface.r_nodes)
         for name, value in zip(_POINT_FIELDS, values):
             getattr(self, name).insert(index, value)
 

@@ -26,7 +26,7 @@ from ..closed_forms.lj import scaled_traction_slope
 from ..plumbing.errors import ContinuationError, InputError
 from ..solids.bem import BoussinesqSurface, radial_grid
 from .landing import land
-from .surface import TIP_GAP, LJSurface
+from .surface import TIP_GAP, LJSurface, SurfaceShape
 
 #: A landing on grids that follow the edge runs in stages of LANDING_STAGE iterations (then
 #: moves to the grid of the iterate's edges if they left the band), at most MAX_STAGES of them:
@@ -179,6 +179,12 @@ class EdgeGrids:
         raise ContinuationError(f"no stable state on a grid that fits it at δ = {delta:.6g} "
                                 f"({MAX_STAGES} stages of landing)")
 
+    def transplant(self, nodes, w, delta):
+        """(surface, w): the state (w, δ̄o), given on the radial `nodes` of a grid that may no
+        longer exist (or another discretisation's), moved to the grid of its edges here (w
+        interpolated linearly; not in equilibrium there: `land` it)."""
+        return self._moved(SurfaceShape(nodes, radius_ratio=self.radius_ratio), w, delta)
+
     @property
     def dofs(self):
         """Unknowns of the largest grid (the surface nodes: a boundary integral)."""
@@ -223,6 +229,11 @@ class FixedGrid:
     def fits(self, surface, w, delta):
         return True
 
+    def transplant(self, nodes, w, delta):
+        """(surface, w): the state given on the radial `nodes` moved to this grid (w interpolated
+        linearly; not in equilibrium there: `land` it)."""
+        return self.start, np.interp(self.start.r_nodes, nodes, w)
+
     def admits(self, surface, w, delta):
         return True
 
@@ -250,7 +261,8 @@ class Grids(Protocol):
     surface resolves the state as well as one built for it. admits(...): it still resolves it
     (a continuation step beyond is retried shorter). land(surface, w, δ̄o, tol=...): (surface,
     w, iterations) of the stable state downhill, on a surface that fits it. record_move(ΔP̄):
-    note the force change of a state moved to a new grid. summary(): a clause for the curve's
+    note the force change of a state moved to a new grid. transplant(nodes, w, δ̄o): (surface,
+    w) of a state given on other radial nodes, moved here. summary(): a clause for the curve's
     message. dofs, largest_nodes: the cost of the largest solid used.
     """
 
@@ -266,5 +278,8 @@ class Grids(Protocol):
              tol: float) -> tuple[LJSurface, np.ndarray, int]: ...
 
     def record_move(self, change: float) -> None: ...
+
+    def transplant(self, nodes: np.ndarray, w: np.ndarray,
+                   delta: float) -> tuple[LJSurface, np.ndarray]: ...
 
     def summary(self) -> str: ...

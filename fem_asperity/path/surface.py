@@ -69,62 +69,15 @@ def derjaguin_profile(r, radius_ratio=None):
 TIP_GAP = 7.5 ** (1.0 / 6.0)
 
 
-class LJSurface:
-    """Residual, tangent and derived quantities of the surface problem at one μ, on any
-    `ElasticSurface` (FE or boundary integral)."""
+class SurfaceShape:
+    """Where a state (w, δ̄o) on the radial nodes `r_nodes` touches: contact radius, crack tip
+    and centre gap, from the gaps at the nodes alone (no elastic operator: a state recorded on
+    a grid no longer built can still be placed, `grids.EdgeGrids.transplant`)."""
 
-    def __init__(self, elastic: ElasticSurface, mu, *, radius_ratio=None):
-        self.mu = mu
+    def __init__(self, r_nodes, *, radius_ratio=None):
+        self.r_nodes = r_nodes
         self.derjaguin = radius_ratio is None
-        self.load_factor = mu**1.5
-        self.r_nodes = elastic.r_nodes
-        self.interp = elastic.interp
-        self.interp_t = elastic.interp.T.tocsr()
-        self.weights = elastic.weights
-        self.profile = derjaguin_profile(elastic.r_quad, radius_ratio)
-        self.node_profile = derjaguin_profile(elastic.r_nodes, radius_ratio)
-        factor = cho_factor(elastic.compliance)
-        self.stiffness = cho_solve(factor, np.eye(elastic.compliance.shape[0]))
-        self.stiffness = 0.5 * (self.stiffness + self.stiffness.T)
-        self._stiffness32 = self.stiffness.astype(np.float32)
-        self._spring_entries, self._spring_map = _spring_pattern(self.interp)
-
-    def gap(self, w, delta):
-        """Gap at the quadrature points, in ε."""
-        return delta + self.profile - self.interp @ w
-
-    def residual(self, w, delta):
-        """g(w, δ): out-of-balance surface loads (E* = 1 units)."""
-        h = self.gap(w, delta)
-        return self.stiffness @ w + self.load_factor * (
-            self.interp_t @ (self.weights * traction(h)))
-
-    def energy(self, w, delta):
-        """E(w; δ) = ½ wᵀS w + μ^(3/2) Σ W φ̄(h), whose gradient in w is the residual g."""
-        return 0.5 * w @ (self.stiffness @ w) + self.load_factor * (
-            self.weights @ potential(self.gap(w, delta)))
-
-    def sensitivities(self, w, delta):
-        """(∂g/∂δ, ∂P̄/∂δ, slope): the load and force sensitivities to δ (∂P̄/∂w =
-        −(∂g/∂δ)/μ^(3/2)) and the weighted spring slope W dp̄/dh, which sets the tangent
-        (`tangent_matrix`, `tangent_product`)."""
-        slope = self.weights * traction_slope(self.gap(w, delta))
-        return self.load_factor * (self.interp_t @ slope), float(slope.sum()), slope
-
-    def tangent_matrix(self, slope):
-        """∂g/∂w for the spring `slope`, symmetric, in single precision (it is only factorised,
-        see `continuation.Linearisation`)."""
-        jac = self._stiffness32.copy()
-        jac.reshape(-1)[self._spring_entries] -= self.load_factor * (self._spring_map @ slope)
-        return jac
-
-    def tangent_product(self, slope, x):
-        """(∂g/∂w) x in double precision for the spring `slope` (from `sensitivities`)."""
-        return self.stiffness @ x - self.load_factor * (self.interp_t @ (slope * (self.interp @ x)))
-
-    def force(self, w, delta):
-        """P̄ = ∫ p̄ r dr = P/(2πRΔγ); negative = tensile."""
-        return float(self.weights @ traction(self.gap(w, delta)))
+        self.node_profile = derjaguin_profile(r_nodes, radius_ratio)
 
     def contact(self, w, delta):
         """(Ā, ā_c): area π Σ(r_out² − r_in²) where h < 1 (compressive), and its outer radius.
@@ -178,3 +131,59 @@ class LJSurface:
     def centre_gap(self, w, delta):
         """x̄o = h(0) = δ − w(0), in ε."""
         return float(delta - w[0])
+
+
+class LJSurface(SurfaceShape):
+    """Residual, tangent and derived quantities of the surface problem at one μ, on any
+    `ElasticSurface` (FE or boundary integral)."""
+
+    def __init__(self, elastic: ElasticSurface, mu, *, radius_ratio=None):
+        super().__init__(elastic.r_nodes, radius_ratio=radius_ratio)
+        self.mu = mu
+        self.load_factor = mu**1.5
+        self.interp = elastic.interp
+        self.interp_t = elastic.interp.T.tocsr()
+        self.weights = elastic.weights
+        self.profile = derjaguin_profile(elastic.r_quad, radius_ratio)
+        factor = cho_factor(elastic.compliance)
+        self.stiffness = cho_solve(factor, np.eye(elastic.compliance.shape[0]))
+        self.stiffness = 0.5 * (self.stiffness + self.stiffness.T)
+        self._stiffness32 = self.stiffness.astype(np.float32)
+        self._spring_entries, self._spring_map = _spring_pattern(self.interp)
+
+    def gap(self, w, delta):
+        """Gap at the quadrature points, in ε."""
+        return delta + self.profile - self.interp @ w
+
+    def residual(self, w, delta):
+        """g(w, δ): out-of-balance surface loads (E* = 1 units)."""
+        h = self.gap(w, delta)
+        return self.stiffness @ w + self.load_factor * (
+            self.interp_t @ (self.weights * traction(h)))
+
+    def energy(self, w, delta):
+        """E(w; δ) = ½ wᵀS w + μ^(3/2) Σ W φ̄(h), whose gradient in w is the residual g."""
+        return 0.5 * w @ (self.stiffness @ w) + self.load_factor * (
+            self.weights @ potential(self.gap(w, delta)))
+
+    def sensitivities(self, w, delta):
+        """(∂g/∂δ, ∂P̄/∂δ, slope): the load and force sensitivities to δ (∂P̄/∂w =
+        −(∂g/∂δ)/μ^(3/2)) and the weighted spring slope W dp̄/dh, which sets the tangent
+        (`tangent_matrix`, `tangent_product`)."""
+        slope = self.weights * traction_slope(self.gap(w, delta))
+        return self.load_factor * (self.interp_t @ slope), float(slope.sum()), slope
+
+    def tangent_matrix(self, slope):
+        """∂g/∂w for the spring `slope`, symmetric, in single precision (it is only factorised,
+        see `continuation.Linearisation`)."""
+        jac = self._stiffness32.copy()
+        jac.reshape(-1)[self._spring_entries] -= self.load_factor * (self._spring_map @ slope)
+        return jac
+
+    def tangent_product(self, slope, x):
+        """(∂g/∂w) x in double precision for the spring `slope` (from `sensitivities`)."""
+        return self.stiffness @ x - self.load_factor * (self.interp_t @ (slope * (self.interp @ x)))
+
+    def force(self, w, delta):
+        """P̄ = ∫ p̄ r dr = P/(2πRΔγ); negative = tensile."""
+        return float(self.weights @ traction(self.gap(w, delta)))

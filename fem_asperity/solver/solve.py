@@ -21,6 +21,7 @@ from ..path.branches import stable_paths
 from ..path.curve import read_events
 from ..path.grids import FixedGrid
 from ..path.load_line import load_line_paths
+from ..path.near_events import events_near
 from ..path.whole_curve import whole_curve_paths
 from ..plumbing.checks import in_range, positive
 from ..plumbing.errors import ContinuationError, InputError
@@ -61,6 +62,13 @@ def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, unstable_br
     unchecked beyond the discretisation's own): for studies that set the resolution themselves.
     spring_constant: load-line control through a spring of that stiffness (2πRΔγ/ε), read off
     the whole curve (`path.load_line`); None: displacement control."""
+    return _solve_traced(mu, disc, solid=solid, radius_ratio=radius_ratio,
+                         unstable_branch=unstable_branch, spring_constant=spring_constant,
+                         progress=progress)[0]
+
+
+def _solve_traced(mu, disc, *, solid, radius_ratio, unstable_branch, spring_constant, progress):
+    """(`solve_discretised`'s result, its trace: the states behind the curve's points)."""
     start = time.perf_counter()
     whole = unstable_branch or spring_constant is not None
     z_jumps = None
@@ -118,14 +126,14 @@ def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, unstable_br
         spring_constant=spring_constant,
         z_jumps=z_jumps,
         model=Model(grids.elastic, grids.start, traced) if fixed else None,
-    )
+    ), traced
 
 
 def _solve_refining(mu, disc, *, progress=None, **options):
     """`solve_discretised`, then again on discretisations refined (`refined()`) up to
     REFINEMENTS times while the curve ripples, or, for a homogeneous Derjaguin curve above
     MU_ONSET_HI, shows no jump-in; its status is 'ripples' or 'missed_jump' if the last one
-    still does. Returns (result, the discretisation it was solved on)."""
+    still does. Returns (result, the discretisation it was solved on, its trace)."""
     must_jump = (mu > MU_ONSET_HI and options["solid"].layer_thickness is None
                  and options["radius_ratio"] is None)
 
@@ -134,20 +142,20 @@ def _solve_refining(mu, disc, *, progress=None, **options):
             return "ripples"
         return "missed_jump" if must_jump and result.events.jump_in is None else None
 
-    result = solve_discretised(mu, disc, progress=progress, **options)
+    result, traced = _solve_traced(mu, disc, progress=progress, **options)
     first, wall, solved_on = flaw(result), result.wall_s, disc
     if first is None:
-        return result, disc
+        return result, disc, traced
     for level in range(1, REFINEMENTS + 1):
         solved_on = solved_on.refined()
-        result = solve_discretised(mu, solved_on, **options)
+        result, traced = _solve_traced(mu, solved_on, progress=None, **options)
         wall += result.wall_s
         if flaw(result) is None:
             why = ("more folds than a jump-in and a jump-out (ripple)" if first == "ripples"
                    else "no jump-in although mu is above the onset")
             note = (f"; at '{disc.name}' {why}: solved again on a discretisation refined "
                     f"{level} time(s)")
-            return replace(result, message=result.message + note, wall_s=wall), solved_on
+            return replace(result, message=result.message + note, wall_s=wall), solved_on, traced
     if flaw(result) == "ripples":
         note = (f"; still ripples after {REFINEMENTS} refinements: the jump-in is the first fold "
                 f"of the approach and the jump-out the last of the retraction; try --tolerance")
@@ -155,33 +163,33 @@ def _solve_refining(mu, disc, *, progress=None, **options):
         note = (f"; no jump-in although mu is above the onset, also refined {REFINEMENTS} "
                 f"times: try --tolerance or a finer accuracy")
     return replace(result, status=worst_status(result.status, flaw(result)),
-                   message=result.message + note, wall_s=wall), solved_on
+                   message=result.message + note, wall_s=wall), solved_on, traced
 
 
-def _estimate(result, disc, partner, partner_disc):
-    """Error estimate of `result` (solved on `disc`) from `partner` (on `partner_disc`, surface
-    elements r times as long): |difference| / |r − 1| per ESTIMATED key, None where the event
-    is missing in either (`_one_sided` names those found by one of the two only).
+def _estimate(a, disc, b, partner_disc):
+    """Error estimate of the events `a` (records, solved on `disc`) from the partner's `b` (on
+    `partner_disc`, surface elements r times as long): |difference| / |r − 1| per ESTIMATED
+    key, None where the event is missing in either (`_one_sided` names those
+    found by one of the two only).
 
     Against a finer partner (r = 1/2) that is twice the difference: the error of first-order
     convergence, which bounds faster convergence too (at order p the difference is the
     fraction 1 − 2^(−p) of the error), overstating it by at most 2 in the asymptotic range.
     Against a coarser one (r = 2, `solve_to_tolerance`) it is the difference itself."""
-    a, b = result.events.records(), partner.events.records()
     scale = 1.0 / abs(partner_disc.h_surface / disc.h_surface - 1.0)
     return {k: (scale * abs(a[k] - b[k]) if a[k] is not None and b[k] is not None else None)
             for k in ESTIMATED}
 
 
-def _one_sided(result, partner):
-    """A message naming the estimated events that one of the two solves has and the other not
-    (a jump one discretisation finds and the other misses): their estimate is None."""
-    a, b = result.events.records(), partner.events.records()
+def _one_sided(a, b):
+    """A message naming the estimated events (records `a` of the solve, `b` of its partner) that
+    one of the two has and the other not (a jump one discretisation finds and the other
+    misses): their estimate is None."""
     keys = [k for k in ESTIMATED if (a[k] is None) != (b[k] is None)]
     if not keys:
         return ""
-    return (f"; {', '.join(keys)} found by only one of the solve and its finer estimate solve "
-            f"(no estimate for them): try a finer accuracy")
+    return (f"; {', '.join(keys)} found by only one of the solve and its finer estimate "
+            f"discretisation (no estimate for them): try a finer accuracy")
 
 
 def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_ratio=None,
@@ -198,11 +206,13 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
         is the whole S-shaped curve (more work: LU factorisations and short steps); by default
         only the stable branches are traced and each jump lands by energy descent
         (`path.branches`).
-    error_estimate: also solve on the discretisation of the estimate (`for_estimate()`: surface
-        elements and turn limit halved, the bulk graded more gently) and report per event twice
-        the difference (`_estimate`). That solve runs alongside on the second core; the
-        wall time is about that of the finer solve. If it fails or ripples, the estimate is
-        None and `status` and `message` say why; the result is kept.
+    error_estimate: also solve each event on the discretisation of the estimate
+        (`for_estimate()`: surface elements and turn limit halved, the bulk graded more gently)
+        and report per event twice the difference (`_estimate`). The finer discretisation
+        traces the curve near each event only (`path.near_events`, after the curve; its
+        surfaces are built alongside on the second core); with `unstable_branch` or a
+        `spring_constant` it solves the whole curve again alongside. If that fails or ripples,
+        the estimate is None and `status` and `message` say why; the result is kept.
     spring_constant: load-line control, as through an AFM cantilever, with a spring of this
         stiffness k̄ = Kε/(2πRΔγ) (> 0): the jumps come where dP̄/dδ̄o reaches k̄, and the
         result's z_jumps hold the spring end's z̄ at them (`path.load_line`); the whole curve is
@@ -231,37 +241,76 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     if not error_estimate:
         return _solve_refining(mu, disc, progress=progress, **options)[0]
     start = time.perf_counter()
-    # The estimate's solve runs in a second thread: the dense factorisations release the GIL,
-    # so the two curves share the two cores (one BLAS thread each). The bar shows the slower.
-    report_main, report_finer = _both(progress)
-    stop = threading.Event()  # set, the estimate's solve ends at its next point
+    whole = unstable_branch or spring_constant is not None
     with threadpool_limits(PATH_BLAS_THREADS, user_api="blas"), ThreadPoolExecutor(1) as pool:
-        finer_job = pool.submit(solve_discretised, mu, disc.for_estimate(),
-                                progress=_stoppable(report_finer, stop), **options)
-        try:
-            result, solved_on = _solve_refining(mu, disc, progress=report_main, **options)
-        except BaseException:  # an error or Ctrl-C: do not wait for the longer solve
-            stop.set()
-            raise
-        try:
-            partner_on = solved_on.for_estimate()
-            if solved_on is disc:
-                partner = finer_job.result()
-            else:  # refined for ripple or a missed jump: its own partner
-                stop.set()
-                partner = solve_discretised(mu, partner_on, **options)
-            if partner.ripples:
-                raise ContinuationError(f"it rippled ({partner.folds} folds)")
-            estimate = _estimate(result, solved_on, partner, partner_on)
-            note, status = _one_sided(result, partner), result.status
-        except Exception as exc:  # the estimate never costs the result: whatever stopped it
-            estimate, note = None, (f"; no error estimate: its finer solve failed "
-                                    f"({type(exc).__name__}: {exc})")
-            status = worst_status(result.status, "no_estimate")
+        estimated = _estimated_by_whole_solve if whole else _estimated_near_events
+        result, estimate, note, status = estimated(mu, disc, options, progress, pool)
     if progress:
         progress(1.0)
     return replace(result, error_estimate=estimate, status=status, message=result.message + note,
                    wall_s=time.perf_counter() - start)
+
+
+def _estimated_near_events(mu, disc, options, progress, pool):
+    """(result, estimate, note, status): the curve, then its events solved again on the
+    estimate's discretisation near where the curve has them (`path.near_events`: a fraction of
+    a whole finer solve). The finer surfaces are built on the second core meanwhile (the FE's
+    condensation)."""
+    geometry = dict(solid=options["solid"], radius_ratio=options["radius_ratio"])
+    finer_grids = pool.submit(disc.for_estimate().grids, mu, **geometry)
+    shown = (lambda f: progress(min(f, ALMOST_DONE))) if progress else None
+    result, solved_on, traced = _solve_refining(mu, disc, progress=shown, **options)
+    try:
+        partner_on = solved_on.for_estimate()
+        grids = (finer_grids.result() if solved_on is disc
+                 else partner_on.grids(mu, **geometry))
+        near = events_near(grids, partner_on.trace, traced, result.equilibrium.branch,
+                           result.approach, result.retraction, result.events.jump_in,
+                           result.events.jump_out)
+        a = result.events.records()
+        note = _one_sided(a, near) + (
+            f"; error estimate from the finer discretisation traced near each event "
+            f"({near['windows']} windows, {near['newton_iterations']} Newton iterations)")
+        return result, _estimate(a, solved_on, near, partner_on), note, result.status
+    except Exception as exc:  # the estimate never costs the result: whatever stopped it
+        return _without_estimate(result, exc)
+
+
+def _without_estimate(result, exc):
+    """(result, estimate, note, status) of a curve whose estimate's solve failed with `exc`."""
+    return result, None, (f"; no error estimate: its finer solve failed "
+                          f"({type(exc).__name__}: {exc})"), worst_status(result.status,
+                                                                        "no_estimate")
+
+
+def _estimated_by_whole_solve(mu, disc, options, progress, pool):
+    """(result, estimate, note, status): the curve and, on the second core alongside, the whole
+    curve again on the estimate's discretisation (the whole curve, unstable branches included,
+    holds the load-line events, which `path.near_events` does not follow)."""
+    # The dense factorisations release the GIL, so the two curves share the two cores (one BLAS
+    # thread each). The bar shows the slower.
+    report_main, report_finer = _both(progress)
+    stop = threading.Event()  # set, the estimate's solve ends at its next point
+    finer_job = pool.submit(solve_discretised, mu, disc.for_estimate(),
+                            progress=_stoppable(report_finer, stop), **options)
+    try:
+        result, solved_on, _ = _solve_refining(mu, disc, progress=report_main, **options)
+    except BaseException:  # an error or Ctrl-C: do not wait for the longer solve
+        stop.set()
+        raise
+    try:
+        partner_on = solved_on.for_estimate()
+        if solved_on is disc:
+            partner = finer_job.result()
+        else:  # refined for ripple or a missed jump: its own partner
+            stop.set()
+            partner = solve_discretised(mu, partner_on, **options)
+        if partner.ripples:
+            raise ContinuationError(f"it rippled ({partner.folds} folds)")
+        a, b = result.events.records(), partner.events.records()
+        return result, _estimate(a, solved_on, b, partner_on), _one_sided(a, b), result.status
+    except Exception as exc:  # the estimate never costs the result: whatever stopped it
+        return _without_estimate(result, exc)
 
 
 class _Stopped(Exception):
@@ -338,7 +387,8 @@ def solve_to_tolerance(mu, tolerance, *, method="fem", solid=Solid(), radius_rat
         wall += previous.wall_s
         disc = disc.refined()
         result = level(k, disc)
-        change = _estimate(result, disc, previous, previous_disc)
+        change = _estimate(result.events.records(), disc, previous.events.records(),
+                           previous_disc)
         worst = max(change[key] / abs(getattr(result.events, key)) for key in TOLERANCE_KEYS)
         done = worst <= tolerance
         note = (f"; tolerance {tolerance:g} on P̄max, P̄off " + ("met" if done else "NOT met")

@@ -1,0 +1,269 @@
+"""A curve's events solved again on another discretisation, traced only near each event.
+
+The error estimate compares each event of a curve with the same event on a finer discretisation
+(`solver.solve`). That finer solve need not trace the whole curve again: each event belongs to
+the stable branch it lies on (an extremum of P̄, the centre gap passing 1 ε, a fold of δ̄o and
+its landing), and that branch is reached from the curve's own state a few points before the
+event, moved onto the finer discretisation (`Grids.transplant`) and corrected there in the
+plane normal to the curve's tangent (`continuation.correct`, regular at folds too). From there
+the branch is traced on the finer discretisation until as far past the event (`WINDOW` points
+of the curve), the event read off as the whole solve reads it, and a jump landed again from
+the finer fold. The long stretches between events (the approach into deep contact, the peel)
+are not traced again.
+
+What this cannot see: a jump the finer discretisation makes and the curve does not (a shallow
+fold near the onset of jump-in); the whole finer solve (`solver.solve.solve_discretised`) finds
+those.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..plumbing.errors import ContinuationError
+from .branches import follow_branch
+from .continuation import Linearisation, correct
+from .curve import Jump
+
+#: Points of the curve traced again before and after each event, 3: the window then spans at
+#: least three turn limits either side, well beyond how far the event moves between the two
+#: discretisations. test_near_events.py.
+WINDOW = 3
+#: Times the start of a window moves WINDOW points further back when its state is not a stable
+#: equilibrium on the finer discretisation (it lay between the two discretisations' folds), 3.
+#: Not pinned by a test.
+BACK_OFF = 3
+
+
+#: The constraint direction that makes `correct` solve for a given centre gap x̄o.
+_GAP = np.array([1.0, 0.0, 0.0])
+
+
+class NotNear(ContinuationError):
+    """An event of the curve has no counterpart near it on the finer discretisation."""
+
+
+@dataclass
+class _Counters:
+    newton_iterations: int = 0
+    windows: int = 0
+
+
+def events_near(grids, settings, traced, branch, approach, retraction, jump_in, jump_out):
+    """The events of a curve solved on `grids` (the finer discretisation's `grids.Grids`, with
+    its trace `settings`) near where the curve has them: a dict of `ESTIMATED`-like keys (p_max,
+    delta_oc, a_c, delta_o_star, x_oc, delta_jump_in, p_jump_after, p_off, delta_jump_out),
+    None where the curve has no such event or the finer discretisation none near it, plus
+    'missed' (the keys of the latter) and the counters 'newton_iterations' and 'windows'.
+
+    traced: the curve's stable branches as one `continuation.Trace` (states, tangents and the
+    nodes of each state); branch: their ids per point (`Curve.branch` of the equilibrium);
+    approach, retraction: its displacement-control paths (`Curve`), jump_in, jump_out: its
+    first and last jumps (`curve.Jump` or None).
+    """
+    near = _Near(grids, settings, traced, np.asarray(branch))
+    found, missed = {}, []
+
+    def attempt(keys, compute):
+        try:
+            found.update(zip(keys, compute()))
+        except NotNear:
+            missed.extend(keys)
+            found.update(dict.fromkeys(keys))
+
+    fine_in = fine_out = None
+    if jump_in is not None:
+        try:
+            fine_in = near.jump(approach, jump_in)
+        except NotNear:
+            pass
+    if jump_out is not None:
+        try:
+            fine_out = near.jump(retraction, jump_out)
+        except NotNear:
+            pass
+    for key, coarse, fine in (("in", jump_in, fine_in), ("out", jump_out, fine_out)):
+        names = (("x_oc", "delta_jump_in", "p_jump_after") if key == "in" else
+                 ("delta_jump_out",))
+        if coarse is None:
+            found.update(dict.fromkeys(names))
+        elif fine is None:
+            missed.extend(names)
+            found.update(dict.fromkeys(names))
+        else:
+            jump = fine[0]
+            found.update(zip(names, (jump.x_before, jump.delta, jump.p_after) if key == "in"
+                             else (jump.delta,)))
+    attempt(("p_max", "delta_oc", "a_c"),
+            lambda: near.most_tensile(approach, (jump_in, fine_in), (jump_out, fine_out)))
+    attempt(("p_off",),
+            lambda: near.most_tensile(retraction, (jump_in, fine_in), (jump_out, fine_out))[:1])
+    attempt(("delta_o_star",), lambda: (near.initial_contact(approach, jump_in, fine_in),))
+    return found | {"missed": missed, "newton_iterations": near.counters.newton_iterations,
+                    "windows": near.counters.windows}
+
+
+class _Near:
+    """The curve's trace and the finer grids, and the windows traced on them."""
+
+    def __init__(self, grids, settings, traced, branch):
+        self.grids, self.settings, self.traced, self.branch = grids, settings, traced, branch
+        self.counters = _Counters()
+
+    def index(self, delta, p):
+        """Index in the trace of the point with exactly this δ̄o and P̄ (a path's rows are
+        copies of trace points), or None (a fold or a landing row)."""
+        at = np.flatnonzero((np.asarray(self.traced.delta) == delta)
+                            & (np.asarray(self.traced.p) == p))
+        return int(at[0]) if at.size else None
+
+    def _span(self, k):
+        """(first, last) index of the branch of trace point k."""
+        same = np.flatnonzero(self.branch == self.branch[k])
+        return int(same[0]), int(same[-1])
+
+    def _start(self, k):
+        """(surface, w, δ̄o, heading) on the finer grids: trace point k moved there and corrected
+        in the plane through it normal to its tangent; None if that is no stable state."""
+        t = self.traced
+        heading = np.asarray(t.tangents[k], dtype=float)
+        anchor = np.array([t.x[k], t.delta[k], t.p[k]])
+        surface, w = self.grids.transplant(t.nodes[k], t.states[k], t.delta[k])
+        for _ in range(2):  # once more if the corrected state left the grid it was moved to
+            solved = correct(surface, w, t.delta[k], heading, anchor, 0.0, tol=self.settings.tol,
+                             max_newton=4 * self.settings.max_newton)
+            if solved is None:
+                return None
+            w, delta, iterations, _ = solved
+            self.counters.newton_iterations += iterations
+            if self.grids.fits(surface, w, delta):
+                break
+            surface, w = self.grids.transplant(surface.r_nodes, w, delta)
+        # factorised afresh: the last iteration's may be an earlier iterate's, even the
+        # transplanted state's, which need not be stable
+        stable = Linearisation(surface, w, delta, heading).stable
+        return (surface, w, delta, heading) if stable else None
+
+    def window(self, k, before, after_delta, *, until=None):
+        """The finer trace (`branches.follow_branch`) of the branch of trace point k, from
+        `before` points back until δ̄o passes `after_delta` (or `until(trace)` holds) or the
+        branch folds: (Trace, fold, beyond, surface, landed). Starts further back (BACK_OFF
+        times) where the start is not stable on the finer discretisation."""
+        first, _ = self._span(k)
+        for attempt in range(BACK_OFF + 1):
+            begin = max(first, k - before * (attempt + 1))
+            start = self._start(begin)
+            if start is not None or begin == first:
+                break
+        if start is None:
+            raise NotNear(f"no stable state near δ = {self.traced.delta[k]:.6g} on the finer "
+                          f"discretisation")
+        surface, w, delta, heading = start
+        sign = np.sign(heading[1])
+
+        def done(tr):
+            return sign * (tr.delta[-1] - after_delta) >= 0.0 or (until is not None
+                                                                 and until(tr))
+
+        branch, fold, beyond, surface, landed = follow_branch(
+            self.grids, surface, w, delta, heading, self.settings, done, None)
+        self.counters.newton_iterations += branch.newton_iterations
+        self.counters.windows += 1
+        return branch, fold, beyond, surface, landed
+
+    def _before(self, path, jump):
+        """Trace index of the last stable point before `jump`'s fold on `path`."""
+        rows = np.flatnonzero((path.delta == jump.delta) & (path.p == jump.p_before))
+        if rows.size == 0 or rows[0] == 0:
+            raise NotNear(f"the fold at δ = {jump.delta:.6g} is not on the path")
+        k = self.index(path.delta[rows[0] - 1], path.p[rows[0] - 1])
+        if k is None:
+            raise NotNear(f"no traced point before the fold at δ = {jump.delta:.6g}")
+        return k
+
+    def jump(self, path, jump):
+        """(Jump, fold values) of `jump` (a fold on `path`) on the finer discretisation: its
+        branch traced from WINDOW points before the fold to as far past it; landed (p_after,
+        a_c_after, x_after) where the curve's own landing is a traced point (a jump in), from
+        that state moved to the finer fold's δ̄o (the same basin, without the descent's
+        spreading contact over many grids), else left as the curve's."""
+        k = self._before(path, jump)
+        first, _ = self._span(k)
+        beyond_fold = jump.delta + (jump.delta - self.traced.delta[max(first, k - WINDOW)])
+        _, fold, _, surface, _ = self.window(k, WINDOW, beyond_fold)
+        if fold is None:
+            raise NotNear(f"the finer discretisation does not fold near δ = {jump.delta:.6g}")
+        delta, before = fold
+        after = dict(p_after=jump.p_after, a_c_after=jump.a_c_after, x_after=jump.x_after)
+        landing = self.index(jump.delta, jump.p_after)
+        if landing is not None:
+            t = self.traced
+            surface, w = self.grids.transplant(t.nodes[landing], t.states[landing], delta)
+            surface, w, iterations = self.grids.land(surface, w, delta, tol=self.settings.tol)
+            self.counters.newton_iterations += iterations
+            after = dict(p_after=surface.force(w, delta), a_c_after=surface.contact(w, delta)[1],
+                         x_after=surface.centre_gap(w, delta))
+        return Jump(delta=delta, x_before=before["x"], p_before=before["p"], **after), before
+
+    def most_tensile(self, path, *jumps):
+        """(P̄, δ̄o, ā_c) at the most tensile point of `path` on the finer discretisation: the
+        landing or fold of one of `jumps` ((curve's Jump, its finer (Jump, fold values))) if the
+        curve has it there, else the least P̄ of its branch traced WINDOW points either side."""
+        i = int(np.argmin(path.p))
+        d, p = path.delta[i], path.p[i]
+        for coarse, fine in jumps:
+            if coarse is not None and d == coarse.delta and p in (coarse.p_after,
+                                                                  coarse.p_before):
+                if fine is None:
+                    raise NotNear("its jump has no counterpart on the finer discretisation")
+                jump, fold = fine
+                if p == coarse.p_after:
+                    return jump.p_after, jump.delta, jump.a_c_after
+                return fold["p"], jump.delta, fold["a_c"]
+        k = self.index(d, p)
+        if k is None:
+            raise NotNear(f"the most tensile point at δ = {d:.6g} is not a traced point")
+        _, last = self._span(k)
+        branch = self.window(k, WINDOW, self.traced.delta[min(last, k + WINDOW)])[0]
+        j = int(np.argmin(branch.p))
+        return float(branch.p[j]), float(branch.delta[j]), float(branch.a_c[j])
+
+    def initial_contact(self, approach, jump_in, fine_in):
+        """δ̄o where the centre gap first reaches 1 ε on the approach, on the finer
+        discretisation: the jump's if contact forms by the jump, else the state with x̄o = 1
+        exactly (`continuation.correct` with x̄o as the constraint) on its branch, from the
+        first point with x̄o ≤ 1 of the branch traced from WINDOW points before; None if
+        contact never forms. (The curve's own is interpolated between samples,
+        `curve._initial_contact`: the estimate includes that error.)"""
+        touching = np.flatnonzero(approach.x <= 1.0)
+        if touching.size == 0:
+            return None
+        i = int(touching[0])
+        if i > 0 and approach.branch[i] != approach.branch[i - 1]:
+            if jump_in is None or approach.delta[i] != jump_in.delta or fine_in is None:
+                raise NotNear("contact forms by a jump the finer discretisation does not make")
+            return fine_in[0].delta
+        k = self.index(approach.delta[i], approach.p[i])
+        if k is None or i == 0:
+            raise NotNear("initial contact is not between two traced points")
+        first, last = self._span(k)
+        far = self.traced.delta[last]  # the gap may fall more slowly on the finer one
+        before = WINDOW
+        while True:  # back until the finer gap starts above 1 (where x̄o falls slowly)
+            branch = self.window(k, before, far, until=lambda tr: tr.x[-1] <= 1.0)[0]
+            inside = np.flatnonzero(np.asarray(branch.x) <= 1.0)
+            if inside.size == 0:
+                raise NotNear("the finer branch does not reach a centre gap of 1")
+            if inside[0] > 0 or k - before <= first:
+                break
+            before *= 4
+        if inside[0] == 0:
+            raise NotNear("the finer branch starts at a centre gap below 1")
+        j = int(inside[0])
+        surface, w = self.grids.transplant(branch.nodes[j], branch.states[j], branch.delta[j])
+        solved = correct(surface, w, branch.delta[j], _GAP, np.zeros(3), 1.0,
+                         tol=self.settings.tol, max_newton=4 * self.settings.max_newton)
+        if solved is None:
+            raise NotNear("no state with a centre gap of 1 near the finer window's crossing")
+        self.counters.newton_iterations += solved[2]
+        return float(solved[1])
