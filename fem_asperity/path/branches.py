@@ -18,6 +18,7 @@ from .continuation import APPROACH, Trace, approach_fraction, follow, start_stat
 from .curve import Jump, curve_from_columns
 from .grids import Grids
 from .whole_curve import (
+    ADJACENT,
     COLUMNS,
     equilibrium_curve,
     fold_by_parabola,
@@ -81,19 +82,25 @@ def _piece(surface, w, delta, heading, settings, until, on_point, admissible=Non
     fold = (δ̄o, values before) at the branch's end, or None if `until` was met.
 
     The fold is where dδ̄o/ds = 0 between the last stable and the first unstable point
-    (`whole_curve.root_along`); where that root is not clean (ripple), the parabola in arc length
-    through the last three points (`whole_curve.fold_by_parabola`), or the start if the branch has
-    no more."""
+    (`whole_curve.root_along`), or one interval earlier (`whole_curve.ADJACENT`: the last point
+    flagged stable may lie just past it, its flag from a reused factorisation); where that
+    root is not clean (ripple), the parabola in arc length through the last three points
+    (`whole_curve.fold_by_parabola`), or the start if the branch has no more."""
     traced = follow(surface, w, delta, heading, settings, until=until, stop_at_fold=True,
                     on_point=on_point, admissible=admissible)
     fold = beyond = None
     if not traced.stable[-1]:
         k = len(traced.delta) - 2
-        exact = root_along(surface, traced, k, 1)
+        for j in (k + shift for shift in ADJACENT if shift <= 0 and k + shift >= 0):
+            exact = root_along(surface, traced, j, 1)
+            if exact is not None:
+                break
         if exact is not None:
             w_f, d_f, _ = exact
             fold = float(d_f), dict(x=surface.centre_gap(w_f, d_f), p=surface.force(w_f, d_f),
                              a_c=surface.contact(w_f, d_f)[1])
+            while len(traced.delta) > j + 2:  # a point flagged stable past the fold
+                traced.drop_last()
         elif k >= 1:
             fold = fold_by_parabola(equilibrium_curve(traced), k, k + 1,
                                     descending=heading[1] < 0)

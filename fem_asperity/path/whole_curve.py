@@ -19,6 +19,11 @@ COLUMNS = ("delta", "x", "p", "area", "a_c")
 #: (BEM default, edge-following grids) each needed 12, and with the continuation's 10 the
 #: pull-off was left a sample, 2.9e-6 off the extremum. test_near_events.py.
 ROOT_NEWTON = 40
+#: Intervals searched for an extremum of P̄, relative to where the stored tangents change sign:
+#: there, then one before and one after (`refine_force_extrema`). At μ = 7 (BEM fine, refined)
+#: the stored dP̄/ds at the sample nearest P̄off was −8.4e-5, recomputed +9.9e-5, and P̄off was
+#: left a sample 7e-7 off. test_near_events.py.
+ADJACENT = (0, -1, 1)
 
 
 def root_along(surface, trace, k, component, *, xtol=1e-9):
@@ -30,7 +35,8 @@ def root_along(surface, trace, k, component, *, xtol=1e-9):
     to change sign between k and k + 1. Each evaluation starts from the nearest state solved so
     far (k and k + 1 to begin with) moved along its tangent: a linear blend of two states would
     blur a crack front that moved between them (at μ = 10 that took 12 Newton iterations per
-    evaluation, this 2-4)."""
+    evaluation, this 2-4). Where Newton fails from there (across a fold, at μ = 7 on the grids
+    that follow the edge) it starts again from the blend."""
     t0 = trace.tangents[k]
     anchor = np.array([trace.x[k], trace.delta[k], trace.p[k]])
     end = float(t0 @ (np.array([trace.x[k + 1], trace.delta[k + 1], trace.p[k + 1]]) - anchor))
@@ -38,12 +44,22 @@ def root_along(surface, trace, k, component, *, xtol=1e-9):
              end: (trace.states[k + 1], trace.delta[k + 1], None)}
     states = {}
 
-    def slope(sigma):
+    def guesses(sigma):
         near = min(known, key=lambda s: abs(s - sigma))
         w, d, rates = known[near]
         if rates is not None:  # (dw/dσ, dδ/dσ) there
-            w, d = w + rates[0] * (sigma - near), d + rates[1] * (sigma - near)
-        solved = correct(surface, w, d, t0, anchor, sigma, max_newton=ROOT_NEWTON)
+            yield w + rates[0] * (sigma - near), d + rates[1] * (sigma - near)
+        else:
+            yield w, d
+        frac = sigma / end  # past a fold the tangent turns: the blend of the two ends
+        yield ((1.0 - frac) * trace.states[k] + frac * trace.states[k + 1],
+               (1.0 - frac) * trace.delta[k] + frac * trace.delta[k + 1])
+
+    def slope(sigma):
+        for w, d in guesses(sigma):
+            solved = correct(surface, w, d, t0, anchor, sigma, max_newton=ROOT_NEWTON)
+            if solved is not None:
+                break
         if solved is None:
             raise ContinuationError(f"no equilibrium near δ = {d:.6g}")
         w, d, _, _ = solved
@@ -66,9 +82,12 @@ def refine_force_extrema(surface, trace, *, xtol=1e-9):
 
     Where the tangent's P̄ component dP̄/ds changes sign between samples k and k + 1, the root is
     found by `root_along`. Sampled at a turn limit of 0.1 rad, the parabola through three
-    samples alone misplaces P̄off by ~3e-5 at μ = 1. Where no equilibrium is found inside the
-    bracket (ripple of a too coarse surface mesh) the samples are left as they are. Returns the
-    number of points inserted.
+    samples alone misplaces P̄off by ~3e-5 at μ = 1. A stored tangent may come from a reused
+    factorisation, good to about 1e-2 of the step, so where dP̄/ds is that small its sign can be
+    wrong and the root lie one interval earlier or later (`ADJACENT`); root_along recomputes the
+    tangents and finds which. Where no equilibrium is found inside the bracket (ripple of a too
+    coarse surface mesh) the samples are left as they are. Returns the number of points
+    inserted.
     """
     inserted = 0
     k = 0
@@ -77,13 +96,18 @@ def refine_force_extrema(surface, trace, *, xtol=1e-9):
         if not (trace.stable[k] and trace.stable[k + 1]) or t0[2] * t1[2] >= 0.0:
             k += 1
             continue
-        extremum = root_along(surface, trace, k, 2, xtol=xtol)
+        extremum = None
+        for j in (k + shift for shift in ADJACENT):
+            if 0 <= j < len(trace.p) - 1 and trace.stable[j] and trace.stable[j + 1]:
+                extremum = root_along(surface, trace, j, 2, xtol=xtol)
+                if extremum is not None:
+                    break
         if extremum is not None:
             w, d, linear = extremum
-            trace.insert(k + 1, surface, w, d, linear.stable, surface.force(w, d),
+            trace.insert(j + 1, surface, w, d, linear.stable, surface.force(w, d),
                          surface.contact(w, d), linear.tangent()[2])
             inserted += 1
-            k += 1
+            k = max(k, j + 1)
         k += 1
     return inserted
 
