@@ -82,7 +82,8 @@ def build_parser():
                             "dgamma); jumps where dP/d(delta) reaches it (omit: displacement "
                             "control)")
     curve.add_argument("--no-error-estimate", action="store_true",
-                       help="skip the second, finer solve (no error estimate; faster)")
+                       help="skip the error estimate (its events solved again on a finer "
+                            "discretisation near each event; faster)")
     curve.add_argument("--unstable-branch", action="store_true",
                        help="also trace the unstable branches (the whole S-shaped curve in "
                             "equilibrium.csv and curve.png; slower: LU factorisations and short "
@@ -107,7 +108,7 @@ def build_parser():
     sweep.add_argument("--accuracy", choices=tuple(PRESETS), default="default",
                        help="resolution of each curve (default: %(default)s)")
     sweep.add_argument("--no-error-estimate", action="store_true",
-                       help="skip each curve's second, finer solve (no error estimate)")
+                       help="skip each curve's error estimate (its events solved again finer)")
     sweep.add_argument("--jobs", type=int, help="worker processes (default: one per core)")
     sweep.add_argument("--scheduler", metavar="ADDRESS",
                        help="run on the Dask cluster of this scheduler (tcp://host:8786) "

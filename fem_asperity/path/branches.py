@@ -90,7 +90,8 @@ def _piece(surface, w, delta, heading, settings, until, on_point, admissible=Non
                     on_point=on_point, admissible=admissible)
     fold = beyond = None
     if not traced.stable[-1]:
-        k = len(traced.delta) - 2
+        k, exact = len(traced.delta) - 2, None
+        beyond = traced.states[-1]  # the first point flagged unstable: the landing starts there
         for j in (k + shift for shift in ADJACENT if shift <= 0 and k + shift >= 0):
             exact = root_along(surface, traced, j, 1)
             if exact is not None:
@@ -107,7 +108,6 @@ def _piece(surface, w, delta, heading, settings, until, on_point, admissible=Non
         else:
             fold = traced.delta[0], {c: getattr(traced, c)[0] for c in ("x", "p", "a_c")}
         fold[1]["area"] = 0.0 if fold[1]["a_c"] <= 0.0 else np.pi * fold[1]["a_c"] ** 2
-        beyond = traced.states[-1]
         traced.drop_last()
     refine_force_extrema(surface, traced)
     return traced, fold, beyond

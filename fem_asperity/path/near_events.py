@@ -49,12 +49,17 @@ class _Counters:
     windows: int = 0
 
 
+#: The events `events_near` gives, as `solver.solve.ESTIMATED` names them.
+EVENTS = ("p_max", "delta_oc", "a_c", "delta_o_star", "x_oc", "delta_jump_in", "p_jump_after",
+          "p_off", "delta_jump_out")
+
+
 def events_near(grids, settings, traced, branch, approach, retraction, jump_in, jump_out):
     """The events of a curve solved on `grids` (the finer discretisation's `grids.Grids`, with
-    its trace `settings`) near where the curve has them: a dict of `ESTIMATED`-like keys (p_max,
-    delta_oc, a_c, delta_o_star, x_oc, delta_jump_in, p_jump_after, p_off, delta_jump_out),
-    None where the curve has no such event or the finer discretisation none near it, plus
-    'missed' (the keys of the latter) and the counters 'newton_iterations' and 'windows'.
+    its trace `settings`) near where the curve has them: a dict of the EVENTS, None where the
+    curve has no such event or the finer discretisation none near it, plus 'missed' (event →
+    why the finer discretisation has none near it) and the counters 'newton_iterations' and
+    'windows'.
 
     traced: the curve's stable branches as one `continuation.Trace` (states, tangents and the
     nodes of each state); branch: their ids per point (`Curve.branch` of the equilibrium);
@@ -62,42 +67,28 @@ def events_near(grids, settings, traced, branch, approach, retraction, jump_in, 
     first and last jumps (`curve.Jump` or None).
     """
     near = _Near(grids, settings, traced, np.asarray(branch))
-    found, missed = {}, []
+    found, missed = dict.fromkeys(EVENTS), {}
 
-    def attempt(keys, compute):
+    def attempt(keys, compute, values=lambda result: result):
+        """compute(): the `keys`' values (as `values` reads them); on a ContinuationError (none
+        near, or a window that could not be followed) they stay None, the reason in missed."""
         try:
-            found.update(zip(keys, compute()))
-        except NotNear:
-            missed.extend(keys)
-            found.update(dict.fromkeys(keys))
+            result = compute()
+        except ContinuationError as exc:
+            missed.update(dict.fromkeys(keys, str(exc)))
+            return None
+        found.update(zip(keys, values(result)))
+        return result
 
-    fine_in = fine_out = None
-    if jump_in is not None:
-        try:
-            fine_in = near.jump(approach, jump_in)
-        except NotNear:
-            pass
-    if jump_out is not None:
-        try:
-            fine_out = near.jump(retraction, jump_out)
-        except NotNear:
-            pass
-    for key, coarse, fine in (("in", jump_in, fine_in), ("out", jump_out, fine_out)):
-        names = (("x_oc", "delta_jump_in", "p_jump_after") if key == "in" else
-                 ("delta_jump_out",))
-        if coarse is None:
-            found.update(dict.fromkeys(names))
-        elif fine is None:
-            missed.extend(names)
-            found.update(dict.fromkeys(names))
-        else:
-            jump = fine[0]
-            found.update(zip(names, (jump.x_before, jump.delta, jump.p_after) if key == "in"
-                             else (jump.delta,)))
-    attempt(("p_max", "delta_oc", "a_c"),
-            lambda: near.most_tensile(approach, (jump_in, fine_in), (jump_out, fine_out)))
-    attempt(("p_off",),
-            lambda: near.most_tensile(retraction, (jump_in, fine_in), (jump_out, fine_out))[:1])
+    fine_in = jump_in and attempt(
+        ("x_oc", "delta_jump_in", "p_jump_after"), lambda: near.jump(approach, jump_in, land=True),
+        lambda fine: (fine[0].x_before, fine[0].delta, fine[0].p_after))
+    fine_out = jump_out and attempt(
+        ("delta_jump_out",), lambda: near.jump(retraction, jump_out, land=False),
+        lambda fine: (fine[0].delta,))
+    jumps = ((jump_in, fine_in), (jump_out, fine_out))
+    attempt(("p_max", "delta_oc", "a_c"), lambda: near.most_tensile(approach, *jumps))
+    attempt(("p_off",), lambda: near.most_tensile(retraction, *jumps)[:1])
     attempt(("delta_o_star",), lambda: (near.initial_contact(approach, jump_in, fine_in),))
     return found | {"missed": missed, "newton_iterations": near.counters.newton_iterations,
                     "windows": near.counters.windows}
@@ -108,7 +99,7 @@ class _Near:
 
     def __init__(self, grids, settings, traced, branch):
         self.grids, self.settings, self.traced, self.branch = grids, settings, traced, branch
-        self.counters = _Counters()
+        self.counters, self._windows = _Counters(), {}
 
     def index(self, delta, p):
         """Index in the trace of the point with exactly this δ̄o and P̄ (a path's rows are
@@ -147,8 +138,12 @@ class _Near:
     def window(self, k, before, after_delta, *, until=None):
         """The finer trace (`branches.follow_branch`) of the branch of trace point k, from
         `before` points back until δ̄o passes `after_delta` (or `until(trace)` holds) or the
-        branch folds: (Trace, fold, beyond, surface, landed). Starts further back (BACK_OFF
-        times) where the start is not stable on the finer discretisation."""
+        branch folds: (Trace, fold or None, surface at its end). Starts further back (BACK_OFF
+        times) where the start is not stable on the finer discretisation. A window asked for
+        twice (P̄max and P̄off at one point of a curve without jumps) is traced once."""
+        key = (k, before, after_delta)
+        if until is None and key in self._windows:
+            return self._windows[key]
         first, _ = self._span(k)
         for attempt in range(BACK_OFF + 1):
             begin = max(first, k - before * (attempt + 1))
@@ -165,11 +160,13 @@ class _Near:
             return sign * (tr.delta[-1] - after_delta) >= 0.0 or (until is not None
                                                                  and until(tr))
 
-        branch, fold, beyond, surface, landed = follow_branch(
-            self.grids, surface, w, delta, heading, self.settings, done, None)
+        branch, fold, _, surface, _ = follow_branch(self.grids, surface, w, delta, heading,
+                                                    self.settings, done, None)
         self.counters.newton_iterations += branch.newton_iterations
         self.counters.windows += 1
-        return branch, fold, beyond, surface, landed
+        if until is None:
+            self._windows[key] = branch, fold, surface
+        return branch, fold, surface
 
     def _before(self, path, jump):
         """Trace index of the last stable point before `jump`'s fold on `path`."""
@@ -181,21 +178,21 @@ class _Near:
             raise NotNear(f"no traced point before the fold at δ = {jump.delta:.6g}")
         return k
 
-    def jump(self, path, jump):
+    def jump(self, path, jump, *, land):
         """(Jump, fold values) of `jump` (a fold on `path`) on the finer discretisation: its
-        branch traced from WINDOW points before the fold to as far past it; landed (p_after,
-        a_c_after, x_after) where the curve's own landing is a traced point (a jump in), from
-        that state moved to the finer fold's δ̄o (the same basin, without the descent's
-        spreading contact over many grids), else left as the curve's."""
+        branch traced from WINDOW points before the fold to as far past it. With `land` (a
+        jump in) and the curve's own landing a traced point, landed (p_after, a_c_after,
+        x_after) from that state moved to the finer fold's δ̄o (the same basin, without the
+        descent's spreading contact over many grids); else those are the curve's."""
         k = self._before(path, jump)
         first, _ = self._span(k)
         beyond_fold = jump.delta + (jump.delta - self.traced.delta[max(first, k - WINDOW)])
-        _, fold, _, surface, _ = self.window(k, WINDOW, beyond_fold)
+        _, fold, _ = self.window(k, WINDOW, beyond_fold)
         if fold is None:
             raise NotNear(f"the finer discretisation does not fold near δ = {jump.delta:.6g}")
         delta, before = fold
         after = dict(p_after=jump.p_after, a_c_after=jump.a_c_after, x_after=jump.x_after)
-        landing = self.index(jump.delta, jump.p_after)
+        landing = self.index(jump.delta, jump.p_after) if land else None
         if landing is not None:
             t = self.traced
             surface, w = self.grids.transplant(t.nodes[landing], t.states[landing], delta)
@@ -224,8 +221,11 @@ class _Near:
         if k is None:
             raise NotNear(f"the most tensile point at δ = {d:.6g} is not a traced point")
         _, last = self._span(k)
-        branch = self.window(k, WINDOW, self.traced.delta[min(last, k + WINDOW)])[0]
+        branch, fold, _ = self.window(k, WINDOW, self.traced.delta[min(last, k + WINDOW)])
         j = int(np.argmin(branch.p))
+        if fold is not None or j in (0, len(branch.p) - 1):
+            raise NotNear(f"the finer branch's most tensile point near δ = {d:.6g} is not "
+                          f"inside its window ({'it folds there' if fold else 'at an end'})")
         return float(branch.p[j]), float(branch.delta[j]), float(branch.a_c[j])
 
     def initial_contact(self, approach, jump_in, fine_in):
@@ -242,7 +242,10 @@ class _Near:
         if i > 0 and approach.branch[i] != approach.branch[i - 1]:
             if jump_in is None or approach.delta[i] != jump_in.delta or fine_in is None:
                 raise NotNear("contact forms by a jump the finer discretisation does not make")
-            return fine_in[0].delta
+            fine, fold = fine_in
+            if not fold["x"] > 1.0 >= fine.x_after:
+                raise NotNear("on the finer discretisation contact does not form by the jump")
+            return fine.delta
         k = self.index(approach.delta[i], approach.p[i])
         if k is None or i == 0:
             raise NotNear("initial contact is not between two traced points")
@@ -250,10 +253,11 @@ class _Near:
         far = self.traced.delta[last]  # the gap may fall more slowly on the finer one
         before = WINDOW
         while True:  # back until the finer gap starts above 1 (where x̄o falls slowly)
-            branch = self.window(k, before, far, until=lambda tr: tr.x[-1] <= 1.0)[0]
+            branch, fold, _ = self.window(k, before, far, until=lambda tr: tr.x[-1] <= 1.0)
             inside = np.flatnonzero(np.asarray(branch.x) <= 1.0)
             if inside.size == 0:
-                raise NotNear("the finer branch does not reach a centre gap of 1")
+                raise NotNear("the finer branch does not reach a centre gap of 1" +
+                              (" before it folds" if fold else ""))
             if inside[0] > 0 or k - before <= first:
                 break
             before *= 4

@@ -14,10 +14,11 @@ from .continuation import Linearisation, correct, trace
 from .curve import Jump, curve_from_columns, parabola_vertex
 
 COLUMNS = ("delta", "x", "p", "area", "a_c")
-#: Newton iterations allowed per point of `root_along`, 40: its guess interpolates the two
-#: bracketing states linearly, which blurs a crack front that moved between them; at μ = 10
-#: (BEM default, edge-following grids) each needed 12, and with the continuation's 10 the
-#: pull-off was left a sample, 2.9e-6 off the extremum. test_near_events.py.
+#: Newton iterations allowed per point of `root_along`, 40: when its guess was the linear
+#: blend of the two bracketing states (now the fallback), which blurs a crack front that moved
+#: between them, each point at μ = 10 (BEM default, edge-following grids) needed 12, and with
+#: the continuation's 10 the pull-off was left a sample, 2.9e-6 off the extremum.
+#: test_near_events.py::test_the_pull_off_at_large_mu_is_the_extremum_not_a_sample.
 ROOT_NEWTON = 40
 #: Intervals searched for an extremum of P̄, relative to where the stored tangents change sign:
 #: there, then one before and one after (`refine_force_extrema`). At μ = 7 (BEM fine, refined)
@@ -107,7 +108,8 @@ def refine_force_extrema(surface, trace, *, xtol=1e-9):
             trace.insert(j + 1, surface, w, d, linear.stable, surface.force(w, d),
                          surface.contact(w, d), linear.tangent()[2])
             inserted += 1
-            k = max(k, j + 1)
+            k = max(k, j) + 2  # past the inserted point and the interval it came from
+            continue
         k += 1
     return inserted
 

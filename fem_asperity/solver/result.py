@@ -66,6 +66,9 @@ class CurveResult:
     the sphere's δ̄o.
     status: one of `STATUSES` ('ok' unless something calls for a finer accuracy);
     message: how it was obtained, and why the status is not 'ok' where it is not.
+    regrid_change: on grids that follow the contact edge, the largest |ΔP̄| of a state moved to
+        a new grid while on a branch: how much where the grids lie moves the forces (the error
+        estimate of the forces includes it); None on one grid or mesh.
     """
 
     mu: float
@@ -90,6 +93,7 @@ class CurveResult:
     unstable_branch: bool = False
     spring_constant: float | None = None
     z_jumps: dict | None = None
+    regrid_change: float | None = None
     model: Model | None = field(default=None, repr=False, compare=False)
 
     @property
@@ -138,6 +142,7 @@ class CurveResult:
             "relative_error_estimate": self.relative_error_estimate,
             "dofs": self.dofs,
             "surface_nodes": self.surface_nodes,
+            "regrid_change": self.regrid_change,
             "points": self.points,
             "newton_iterations": self.newton_iterations,
             "wall_s": self.wall_s,
