@@ -7,22 +7,28 @@ import pytest
 
 import fem_asperity.solver.solve as solve
 from fem_asperity.path.continuation import _POINT_FIELDS, Trace
+from fem_asperity.path.curve import ESTIMATED
 from fem_asperity.path.near_events import events_near
 from fem_asperity.path.whole_curve import refine_force_extrema
 from fem_asperity.solids.fe import Solid
 from fem_asperity.solver.presets import MU_TRACKING
-from fem_asperity.solver.solve import ESTIMATED, _discretisation, _solve_refining
+from fem_asperity.solver.solve import _discretisation, _solve_refining
 
 #: Events at the jump-in's landing (where the approach is most tensile at these μ).
 LANDED = ("p_max", "a_c", "p_jump_after")
 OPTIONS = dict(solid=Solid(), radius_ratio=None, unstable_branch=False, spring_constant=None)
 
 
+def _solved(mu, method, accuracy):
+    """(curve, the discretisation it was solved on, its trace), as `solve_curve` solves it."""
+    disc = _discretisation(mu, accuracy, solid=Solid(), method=method, p_end=1.0, whole=False)
+    return _solve_refining(mu, disc, **OPTIONS)
+
+
 def _curve_and_near(mu, method, accuracy):
     """(curve, its events near each event on the estimate's discretisation, that
     discretisation)."""
-    disc = _discretisation(mu, accuracy, solid=Solid(), method=method, p_end=1.0, whole=False)
-    result, solved_on, traced = _solve_refining(mu, disc, **OPTIONS)
+    result, solved_on, traced = _solved(mu, method, accuracy)
     partner = solved_on.for_estimate()
     near = events_near(partner.grids(mu), partner.trace, traced, result.equilibrium.branch,
                        result.approach, result.retraction, result.events.jump_in,
@@ -106,8 +112,7 @@ def test_the_pull_off_at_large_mu_is_the_extremum_not_a_sample():
     """At μ = 10 the pull-off was left a sample (2.9e-6 off at BEM default) because locating
     the extremum between two samples needed more Newton iterations than a continuation step
     allows: now the point of P̄off has dP̄/ds = 0 to within 1e-4 of its neighbours' slopes."""
-    disc = _discretisation(10.0, "draft", solid=Solid(), method="bem", p_end=1.0, whole=False)
-    result, _, traced = _solve_refining(10.0, disc, **OPTIONS)
+    result, _, traced = _solved(10.0, "bem", "draft")
     k = int(np.flatnonzero(np.asarray(traced.p) == result.events.p_off)[0])
     slopes = [traced.tangents[i][2] for i in (k - 1, k, k + 1)]
     assert abs(slopes[1]) <= 1e-4 * max(abs(slopes[0]), abs(slopes[2]))
@@ -119,8 +124,7 @@ def test_an_extremum_one_interval_off_the_stored_sign_change_is_found():
     a sample 7e-7 off). Here the samples either side of the exact P̄off of a BEM curve at μ = 1,
     with the sign of the one after flipped, so the stored signs change one interval late: the
     extremum is still found, to 1e-12."""
-    disc = _discretisation(1.0, "draft", solid=Solid(), method="bem", p_end=1.0, whole=False)
-    result, _, traced = _solve_refining(1.0, disc, **OPTIONS)
+    result, _, traced = _solved(1.0, "bem", "draft")
     k = int(np.flatnonzero(np.asarray(traced.p) == result.events.p_off)[0])
     samples = Trace()
     for name in _POINT_FIELDS:

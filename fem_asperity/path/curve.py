@@ -104,6 +104,12 @@ class Events:
         }
 
 
+#: The events an error estimate compares (`Events.records` keys): forces, separations, radii;
+#: the forces just before a jump, after the jump-out and δ̄off are not estimated.
+ESTIMATED = ("p_max", "delta_oc", "a_c", "delta_o_star", "x_oc", "delta_jump_in", "p_jump_after",
+             "p_off", "delta_jump_out")
+
+
 def parabola_vertex(t, y):
     """Abscissa and value of the parabola through three points (t, y)."""
     a, b, c = np.polyfit(t - t[1], y, 2)

@@ -16,14 +16,12 @@ fold near the onset of jump-in); the whole finer solve (`solver.solve.solve_disc
 those.
 """
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from ..plumbing.errors import ContinuationError
 from .branches import follow_branch
 from .continuation import Linearisation, correct
-from .curve import Jump
+from .curve import ESTIMATED, Jump
 
 #: Points of the curve traced again before and after each event, 3: the window then spans at
 #: least three turn limits either side, well beyond how far the event moves between the two
@@ -33,6 +31,10 @@ WINDOW = 3
 #: equilibrium on the finer discretisation (it lay between the two discretisations' folds), 3.
 #: Not pinned by a test.
 BACK_OFF = 3
+#: Newton iterations allowed to correct a state moved from another grid, 40 (four times a
+#: continuation step's): its guess is an interpolated state, not a predictor along the curve.
+#: Not pinned by a test.
+MOVED_NEWTON = 40
 
 
 #: The constraint direction that makes `correct` solve for a given centre gap x̄o.
@@ -43,20 +45,10 @@ class NotNear(ContinuationError):
     """An event of the curve has no counterpart near it on the finer discretisation."""
 
 
-@dataclass
-class _Counters:
-    newton_iterations: int = 0
-    windows: int = 0
-
-
-#: The events `events_near` gives, as `solver.solve.ESTIMATED` names them.
-EVENTS = ("p_max", "delta_oc", "a_c", "delta_o_star", "x_oc", "delta_jump_in", "p_jump_after",
-          "p_off", "delta_jump_out")
-
-
 def events_near(grids, settings, traced, branch, approach, retraction, jump_in, jump_out):
     """The events of a curve solved on `grids` (the finer discretisation's `grids.Grids`, with
-    its trace `settings`) near where the curve has them: a dict of the EVENTS, None where the
+    its trace `settings`) near where the curve has them: a dict of the `curve.ESTIMATED`
+    events, None where the
     curve has no such event or the finer discretisation none near it, plus 'missed' (event →
     why the finer discretisation has none near it) and the counters 'newton_iterations' and
     'windows'.
@@ -67,7 +59,7 @@ def events_near(grids, settings, traced, branch, approach, retraction, jump_in, 
     first and last jumps (`curve.Jump` or None).
     """
     near = _Near(grids, settings, traced, np.asarray(branch))
-    found, missed = dict.fromkeys(EVENTS), {}
+    found, missed = dict.fromkeys(ESTIMATED), {}
 
     def attempt(keys, compute, values=lambda result: result):
         """compute(): the `keys`' values (as `values` reads them); on a ContinuationError (none
@@ -90,8 +82,8 @@ def events_near(grids, settings, traced, branch, approach, retraction, jump_in, 
     attempt(("p_max", "delta_oc", "a_c"), lambda: near.most_tensile(approach, *jumps))
     attempt(("p_off",), lambda: near.most_tensile(retraction, *jumps)[:1])
     attempt(("delta_o_star",), lambda: (near.initial_contact(approach, jump_in, fine_in),))
-    return found | {"missed": missed, "newton_iterations": near.counters.newton_iterations,
-                    "windows": near.counters.windows}
+    return found | {"missed": missed, "newton_iterations": near.newton_iterations,
+                    "windows": near.windows}
 
 
 class _Near:
@@ -99,7 +91,7 @@ class _Near:
 
     def __init__(self, grids, settings, traced, branch):
         self.grids, self.settings, self.traced, self.branch = grids, settings, traced, branch
-        self.counters, self._windows = _Counters(), {}
+        self.newton_iterations, self.windows, self._windows = 0, 0, {}
 
     def index(self, delta, p):
         """Index in the trace of the point with exactly this δ̄o and P̄ (a path's rows are
@@ -122,11 +114,11 @@ class _Near:
         surface, w = self.grids.transplant(t.nodes[k], t.states[k], t.delta[k])
         for _ in range(2):  # once more if the corrected state left the grid it was moved to
             solved = correct(surface, w, t.delta[k], heading, anchor, 0.0, tol=self.settings.tol,
-                             max_newton=4 * self.settings.max_newton)
+                             max_newton=MOVED_NEWTON)
             if solved is None:
                 return None
             w, delta, iterations, _ = solved
-            self.counters.newton_iterations += iterations
+            self.newton_iterations += iterations
             if self.grids.fits(surface, w, delta):
                 break
             surface, w = self.grids.transplant(surface.r_nodes, w, delta)
@@ -138,7 +130,7 @@ class _Near:
     def window(self, k, before, after_delta, *, until=None):
         """The finer trace (`branches.follow_branch`) of the branch of trace point k, from
         `before` points back until δ̄o passes `after_delta` (or `until(trace)` holds) or the
-        branch folds: (Trace, fold or None, surface at its end). Starts further back (BACK_OFF
+        branch folds: (Trace, fold or None). Starts further back (BACK_OFF
         times) where the start is not stable on the finer discretisation. A window asked for
         twice (P̄max and P̄off at one point of a curve without jumps) is traced once."""
         key = (k, before, after_delta)
@@ -160,13 +152,13 @@ class _Near:
             return sign * (tr.delta[-1] - after_delta) >= 0.0 or (until is not None
                                                                  and until(tr))
 
-        branch, fold, _, surface, _ = follow_branch(self.grids, surface, w, delta, heading,
-                                                    self.settings, done, None)
-        self.counters.newton_iterations += branch.newton_iterations
-        self.counters.windows += 1
+        branch, fold = follow_branch(self.grids, surface, w, delta, heading, self.settings, done,
+                                     None)[:2]
+        self.newton_iterations += branch.newton_iterations
+        self.windows += 1
         if until is None:
-            self._windows[key] = branch, fold, surface
-        return branch, fold, surface
+            self._windows[key] = branch, fold
+        return branch, fold
 
     def _before(self, path, jump):
         """Trace index of the last stable point before `jump`'s fold on `path`."""
@@ -187,7 +179,7 @@ class _Near:
         k = self._before(path, jump)
         first, _ = self._span(k)
         beyond_fold = jump.delta + (jump.delta - self.traced.delta[max(first, k - WINDOW)])
-        _, fold, _ = self.window(k, WINDOW, beyond_fold)
+        fold = self.window(k, WINDOW, beyond_fold)[1]
         if fold is None:
             raise NotNear(f"the finer discretisation does not fold near δ = {jump.delta:.6g}")
         delta, before = fold
@@ -197,7 +189,7 @@ class _Near:
             t = self.traced
             surface, w = self.grids.transplant(t.nodes[landing], t.states[landing], delta)
             surface, w, iterations = self.grids.land(surface, w, delta, tol=self.settings.tol)
-            self.counters.newton_iterations += iterations
+            self.newton_iterations += iterations
             after = dict(p_after=surface.force(w, delta), a_c_after=surface.contact(w, delta)[1],
                          x_after=surface.centre_gap(w, delta))
         return Jump(delta=delta, x_before=before["x"], p_before=before["p"], **after), before
@@ -221,7 +213,7 @@ class _Near:
         if k is None:
             raise NotNear(f"the most tensile point at δ = {d:.6g} is not a traced point")
         _, last = self._span(k)
-        branch, fold, _ = self.window(k, WINDOW, self.traced.delta[min(last, k + WINDOW)])
+        branch, fold = self.window(k, WINDOW, self.traced.delta[min(last, k + WINDOW)])
         j = int(np.argmin(branch.p))
         if fold is not None or j in (0, len(branch.p) - 1):
             raise NotNear(f"the finer branch's most tensile point near δ = {d:.6g} is not "
@@ -253,7 +245,7 @@ class _Near:
         far = self.traced.delta[last]  # the gap may fall more slowly on the finer one
         before = WINDOW
         while True:  # back until the finer gap starts above 1 (where x̄o falls slowly)
-            branch, fold, _ = self.window(k, before, far, until=lambda tr: tr.x[-1] <= 1.0)
+            branch, fold = self.window(k, before, far, until=lambda tr: tr.x[-1] <= 1.0)
             inside = np.flatnonzero(np.asarray(branch.x) <= 1.0)
             if inside.size == 0:
                 raise NotNear("the finer branch does not reach a centre gap of 1" +
@@ -266,8 +258,8 @@ class _Near:
         j = int(inside[0])
         surface, w = self.grids.transplant(branch.nodes[j], branch.states[j], branch.delta[j])
         solved = correct(surface, w, branch.delta[j], _GAP, np.zeros(3), 1.0,
-                         tol=self.settings.tol, max_newton=4 * self.settings.max_newton)
+                         tol=self.settings.tol, max_newton=MOVED_NEWTON)
         if solved is None:
             raise NotNear("no state with a centre gap of 1 near the finer window's crossing")
-        self.counters.newton_iterations += solved[2]
+        self.newton_iterations += solved[2]
         return float(solved[1])

@@ -18,7 +18,7 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from ..path.branches import stable_paths
-from ..path.curve import read_events
+from ..path.curve import ESTIMATED, read_events
 from ..path.grids import FixedGrid
 from ..path.load_line import load_line_paths
 from ..path.near_events import events_near
@@ -51,9 +51,6 @@ MU_RANGE = (1e-3, 1e4)
 SPRING_MAX = 1e12
 #: Progress shown until a solve and its error estimate have both ended.
 ALMOST_DONE = 0.99
-#: Event keys compared between the two meshes of the error estimate.
-ESTIMATED = ("p_max", "delta_oc", "a_c", "delta_o_star", "x_oc", "delta_jump_in", "p_jump_after",
-             "p_off", "delta_jump_out")
 #: The estimated forces: on grids that follow the edge their estimate adds the curve's
 #: `regrid_change`, the force change of a state moved between grids, which the finer partner
 #: (its grids placed alike) does not see: at μ = 8 (BEM draft) P̄off moved by 1.3e-8 with the
@@ -176,7 +173,7 @@ def _solve_refining(mu, disc, *, progress=None, **options):
 def _estimate(a, disc, b, partner_disc):
     """Error estimate of the events `a` (records, solved on `disc`) from the partner's `b` (on
     `partner_disc`, surface elements r times as long): |difference| / |r − 1| per ESTIMATED
-    key, None where the event is missing in either (`_one_sided` names those
+    key, None where the event is missing in either (`_one_sided` and `_missed` name those
     found by one of the two only).
 
     Against a finer partner (r = 1/2) that is twice the difference: the error of first-order
