@@ -2,9 +2,10 @@
 
 import numpy as np
 import pytest
+from scipy.linalg import LinAlgError
 
 from fem_asperity.closed_forms.lj import scaled_traction_slope
-from fem_asperity.path.continuation import Linearisation
+from fem_asperity.path.continuation import EdgeBlockCholesky, Linearisation, edge_block
 from fem_asperity.path.elimination import relax_edge
 from fem_asperity.path.surface import LJSurface
 from fem_asperity.solver.presets import discretisation
@@ -87,3 +88,68 @@ def test_moved_linearisation_solves_like_a_fresh_one(traced):
         if size == 1e-4:
             assert np.max(np.abs(reused - fresh)) <= 1e-3 * np.max(np.abs(fresh))
     assert converged == [True, False]
+
+
+def _spd(n, rng):
+    a = rng.random((n, n))
+    return (a @ a.T + n * np.eye(n)).astype(np.float32)
+
+
+def test_edge_block_cholesky_solves_the_matrix_and_its_new_edge():
+    """The block factorisation solves J x = b to single precision, and with a new edge block
+    (`with_edge`) solves the matrix with that block; a matrix that is not positive definite in
+    its bulk or its edge raises LinAlgError."""
+    rng = np.random.default_rng(1)
+    jac, block = _spd(40, rng), (12, 20)
+    rhs = rng.random(40)
+    factor = EdgeBlockCholesky(jac, block)
+    exact = np.linalg.solve(jac.astype(float), rhs)
+    assert np.max(np.abs(factor.solve(rhs) - exact)) <= 1e-5 * np.max(np.abs(exact))
+    changed = jac.copy()
+    changed[12:20, 12:20] += _spd(8, rng)
+    exact = np.linalg.solve(changed.astype(float), rhs)
+    moved = factor.with_edge(changed[12:20, 12:20])
+    assert np.max(np.abs(moved.solve(rhs) - exact)) <= 1e-5 * np.max(np.abs(exact))
+    for bad in ((0, 0), (15, 15)):  # a negative pivot in the bulk, then in the edge
+        indefinite = jac.copy()
+        indefinite[bad] = -1e3
+        with pytest.raises(LinAlgError):
+            EdgeBlockCholesky(indefinite, block)
+
+
+def test_a_linearisation_moved_to_the_next_point_solves_like_a_fresh_one(traced):
+    """At every pair of neighbouring traced points in contact, the linearisation of the first
+    moved to the second (its edge block refactorised, as each point's first Newton iterate does)
+    gives the fresh Newton step to 1e-3 and says it converged, or declines (None) because the
+    crack tip left its edge block, at most a few times along the curve."""
+    surface, trace = traced
+    row = np.array([-1.0, -1.0, 0.0]) / np.sqrt(2.0)
+    moved_pairs = declined = 0
+    for k in range(len(trace.delta) - 1):
+        if not (trace.stable[k] and trace.stable[k + 1] and trace.a_c[k] > 0.0):
+            continue
+        w, delta = trace.states[k + 1], trace.delta[k + 1]
+        rhs = np.append(surface.residual(w + 1e-3, delta), 0.3)
+        moved = Linearisation(surface, trace.states[k], trace.delta[k], row).moved_to(
+            surface, w, delta, row)
+        if moved is None:
+            declined += 1
+            continue
+        fresh = np.append(*Linearisation(surface, w, delta, row).solve(rhs))
+        step = np.append(*moved.solve(rhs))
+        assert moved.converged
+        assert np.max(np.abs(step - fresh)) <= 1e-3 * np.max(np.abs(fresh))
+        moved_pairs += 1
+    assert moved_pairs >= 20 and declined <= moved_pairs // 4
+
+
+def test_a_linearisation_declines_to_move_where_the_tip_left_its_edge_block(traced):
+    """Moved from a state in contact to the state before contact (its tip at the centre), the
+    linearisation declines: the tip is outside its edge block."""
+    surface, trace = traced
+    row = np.array([-1.0, -1.0, 0.0]) / np.sqrt(2.0)
+    w, delta = _contact_state(traced)
+    before = next(k for k, a in enumerate(trace.a_c) if a == 0.0)
+    linear = Linearisation(surface, w, delta, row)
+    assert edge_block(surface, w, delta)[0] > 0
+    assert linear.moved_to(surface, trace.states[before], trace.delta[before], row) is None

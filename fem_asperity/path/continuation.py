@@ -13,18 +13,33 @@ from copy import copy
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.linalg import LinAlgError, cho_factor, cho_solve, lu_factor, lu_solve
+from scipy.linalg import (
+    LinAlgError,
+    cho_factor,
+    cho_solve,
+    cholesky,
+    lu_factor,
+    lu_solve,
+    solve_triangular,
+)
 
 from ..plumbing.errors import ContinuationError
 from .elimination import relax_edge
 from .surface import gap_keeping_step
 
-#: A Newton iteration reuses the last one's factorisation once that one's increment was ≤ REUSE
-#: relative to the state, refining each solve against the current matrix up to MOVED_REFINEMENTS
-#: times; if the last correction is still > ACCEPT of the step it factorises afresh. REUSE: the
-#: largest whose refinements still converge (moved by 1e-2 they diverge), events unchanged;
-#: test_surface_solver.py::test_moved_linearisation_solves_like_a_fresh_one.
-REUSE, MOVED_REFINEMENTS, ACCEPT = 3e-3, 3, 1e-2
+#: A Newton iteration reuses the last linearisation (of this point or the one before) with its
+#: edge block refactorised at the new iterate (`Linearisation.moved_to`), refining each solve
+#: against the current matrix up to MOVED_REFINEMENTS times; if the last correction is still
+#: > ACCEPT of the step it factorises afresh; test_surface_solver.py::
+#: test_moved_linearisation_solves_like_a_fresh_one.
+MOVED_REFINEMENTS, ACCEPT = 3, 1e-2
+#: The edge block: this share of the surface nodes, a contiguous run centred on the crack tip
+#: (the centre before contact). Only there do the springs change much between neighbouring
+#: points (FE `draft`, μ = 5: with the 187 nodes within 0.5 √(Rε) of the tip refreshed, the
+#: rest kept from 8 points back, the refinement contracts by 0.1-0.2 per sweep; kept whole, the
+#: matrix's eigenvalues move by up to 150). A moved linearisation whose tip left the middle half
+#: of its block factorises afresh. Not pinned by a test.
+EDGE_SHARE = 0.125
 #: Newton's line search: a step is accepted once the merit (relative residual + constraint)
 #: falls by ARMIJO × its fraction (the usual sufficient decrease), else halved, at most
 #: MAX_HALVINGS times (2^-20 of a step is below any useful move). Not pinned by a test.
@@ -142,16 +157,65 @@ def cholesky_in_place(matrix):
     return cho_factor(matrix.T, check_finite=False, overwrite_a=True)
 
 
+def edge_block(surface, w, delta):
+    """(first, last + 1): the run of EDGE_SHARE of the nodes centred on the crack tip."""
+    n = surface.r_nodes.size
+    count = max(1, int(EDGE_SHARE * n))
+    centre = int(np.searchsorted(surface.r_nodes, surface.crack_tip(w, delta)))
+    first = min(max(centre - count // 2, 0), n - count)
+    return first, first + count
+
+
+class EdgeBlockCholesky:
+    """Cholesky factorisation of a symmetric positive definite matrix J (single precision) with
+    its nodes ordered bulk first, edge block (`edge_block`) last:
+
+        J = [[L Lᵀ, L M], [Mᵀ Lᵀ, J_ee]],   J_ee − Mᵀ M = S (the edge's Schur complement),
+
+    so that a new edge block J_ee' costs only the Cholesky factorisation of J_ee' − Mᵀ M
+    (`with_edge`), the bulk kept. Raises LinAlgError where J is not positive definite."""
+
+    def __init__(self, jac, block):
+        first, last = block
+        self.block = block
+        self._bulk = np.r_[0:first, last:jac.shape[0]]
+        bulk, edge = self._bulk, slice(first, last)
+        self._l = cholesky(jac[np.ix_(bulk, bulk)].T, lower=True, overwrite_a=True,
+                           check_finite=False)
+        self._m = solve_triangular(self._l, jac[bulk, edge], lower=True, check_finite=False)
+        self._coupled = self._m.T @ self._m
+        self._schur = cho_factor(jac[edge, edge] - self._coupled, check_finite=False)
+
+    def with_edge(self, jac_edge):
+        """This factorisation with the edge block replaced by `jac_edge`."""
+        moved = copy(self)
+        moved._schur = cho_factor(jac_edge - self._coupled, check_finite=False)
+        return moved
+
+    def solve(self, rhs):
+        """J⁻¹ rhs in single precision."""
+        first, last = self.block
+        rhs = rhs.astype(np.float32)
+        y = solve_triangular(self._l, rhs[self._bulk], lower=True, check_finite=False)
+        z = cho_solve(self._schur, rhs[first:last] - self._m.T @ y, check_finite=False)
+        x = np.empty(rhs.size)
+        x[first:last] = z
+        x[self._bulk] = solve_triangular(self._l, y - self._m @ z, lower=True, trans="T",
+                                         check_finite=False)
+        return x
+
+
 class Linearisation:
     """The bordered Newton matrix [[∂g/∂w, ∂g/∂δ], [row · ∂o/∂(w, δ)]] at (w, δ), factorised.
 
-    Where ∂g/∂w is positive definite (a stable state) it is solved by Cholesky and block
-    elimination (cheaper than LU); otherwise, or if the border is degenerate, by LU of the whole
-    matrix. `stable` records which, so stability comes for free with every point. The
-    factorisation is in single precision (faster than double) and each solve is refined once
-    against the double-precision bordered matrix, so a solution carries about (κ·6e-8)² relative
-    error for the bordered system's condition number κ (a factorisation reused at a nearby
-    state, `moved_to`, is refined up to MOVED_REFINEMENTS times).
+    Where ∂g/∂w is positive definite (a stable state) it is solved by Cholesky
+    (`EdgeBlockCholesky`) and block elimination of the border (cheaper than LU); otherwise, or
+    if the border is degenerate, by LU of the whole matrix. `stable` records which, so stability
+    comes for free with every point. The factorisation is in single precision (faster than
+    double) and each solve is refined once against the double-precision bordered matrix, so a
+    solution carries about (κ·6e-8)² relative error for the bordered system's condition number κ
+    (a linearisation moved to a nearby state, `moved_to`, is refined up to MOVED_REFINEMENTS
+    times).
     """
 
     def __init__(self, surface, w, delta, row):
@@ -161,27 +225,28 @@ class Linearisation:
         jac = surface.tangent_matrix(slope)
         self.refinements, self.moved, self.converged = 1, False, True
         try:
-            self._cho = cholesky_in_place(jac)
+            self._cho = EdgeBlockCholesky(jac, edge_block(surface, w, delta))
             self.stable = True
         except LinAlgError:
             self._cho, self.stable = None, False
-        if self._cho is not None:
-            self._border, self._b = border[:n], self._cho_solve(g_delta)
-            self._denominator = border[n] - self._border @ self._b
-            size = abs(border[n]) + abs(self._border) @ abs(self._b)
-            if abs(self._denominator) > DEGENERATE_BORDER * size:
-                return
+        if self._cho is not None and self._eliminate(border):
+            return
         matrix = np.empty((n + 1, n + 1), dtype=np.float32, order="F")  # LU in place
-        matrix[:n, :n], matrix[:n, n], matrix[n] = surface.tangent_matrix(slope), g_delta, border
+        matrix[:n, :n], matrix[:n, n], matrix[n] = jac, g_delta, border
         self._cho, self._lu = None, lu_factor(matrix, check_finite=False, overwrite_a=True)
 
-    def _cho_solve(self, rhs):
-        return cho_solve(self._cho, rhs.astype(np.float32), check_finite=False).astype(float)
+    def _eliminate(self, border):
+        """Set up the block elimination of the border; False if it is degenerate."""
+        n = self.n
+        self._border, self._b = border[:n], self._cho.solve(self._g_delta)
+        self._denominator = border[n] - self._border @ self._b
+        size = abs(border[n]) + abs(self._border) @ abs(self._b)
+        return abs(self._denominator) > DEGENERATE_BORDER * size
 
     def _solve_factored(self, rhs):
         if self._cho is None:
             return lu_solve(self._lu, rhs.astype(np.float32), check_finite=False).astype(float)
-        a = self._cho_solve(rhs[:-1])
+        a = self._cho.solve(rhs[:-1])
         dd = (rhs[-1] - self._border @ a) / self._denominator
         return np.append(a - dd * self._b, dd)
 
@@ -198,14 +263,30 @@ class Linearisation:
         return border
 
     def moved_to(self, surface, w, delta, row):
-        """This factorisation as the approximate inverse of the bordered matrix at a nearby state
-        (w, δ): solves are refined against that state's exact matrix (up to MOVED_REFINEMENTS
+        """This linearisation as the approximate inverse of the bordered matrix at a nearby state
+        (w, δ): a Cholesky one with its edge block refactorised there (the bulk kept), an LU one
+        as it is. Solves are refined against that state's exact matrix (up to MOVED_REFINEMENTS
         times, until a correction is ≤ ACCEPT of the step; `converged` says whether the last
-        solve got there). The stability flag is this one's."""
+        solve got there). None where the crack tip left the middle half of the edge block or
+        the refactorised edge is not positive definite: then factorise afresh."""
         moved = copy(self)
-        moved._set_products(surface, row, *surface.sensitivities(w, delta))
+        g_delta, p_delta, slope = surface.sensitivities(w, delta)
+        border = moved._set_products(surface, row, g_delta, p_delta, slope)
         moved.refinements, moved.moved = MOVED_REFINEMENTS, True
-        return moved
+        if self._cho is None:
+            return moved
+        first, last = self._cho.block
+        quarter = (last - first) // 4
+        lowest = first + quarter if first > 0 else 0
+        highest = last - quarter if last < self.n else self.n
+        tip = int(np.searchsorted(surface.r_nodes, surface.crack_tip(w, delta)))
+        if not lowest <= tip <= highest:
+            return None
+        try:
+            moved._cho = self._cho.with_edge(surface.tangent_block(slope, first, last))
+        except LinAlgError:
+            return None
+        return moved if moved._eliminate(border) else None
 
     def solve(self, rhs):
         """Solution (dw, dδ) of the bordered system for the right-hand side (n + 1,)."""
@@ -231,30 +312,34 @@ class Linearisation:
         return dw / norm, dd / norm, observed / norm
 
 
-def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10, patience=None):
+def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10, patience=None,
+            linear=None):
     """Newton with a gap-preserving, residual-decreasing line search on the bordered system.
 
     Solves g(w, δ) = 0 with direction·(o(w, δ) − anchor) = ds for the observables
-    o = (x̄o, δ̄o, P̄). The matrix is refactored at every iterate until the increments are
-    ≤ REUSE, then reused with refined solves (chord steps with an old matrix, unrefined,
-    overshoot into the repulsive wall where the contact front has moved).
+    o = (x̄o, δ̄o, P̄). Each iterate reuses the last `Linearisation` (or `linear`, one of a
+    nearby state), moved there (`Linearisation.moved_to`), with refined solves; where the
+    refinement does not converge, or the crack tip left its edge block, it factorises afresh
+    (chord steps with an old matrix, unrefined, overshoot into the repulsive wall where the
+    contact front has moved).
     patience: give up after this many consecutive iterations that cut the residual by < 10%
     (None: only after max_newton); a continuation step is cheaper to retry shorter.
     Returns (w, δ, iterations, the `Linearisation` of the last iteration) or None. That
     linearisation's products lie within the last increment (≤ √tol relative) of the solution;
-    if it was reused, its factorisation and stability flag are those of an iterate ≤ REUSE away.
+    if it was moved, its bulk factorisation is an earlier iterate's (or `linear`'s) and its
+    stability flag says that the refactorised edge block is positive definite with that bulk.
     """
     w, delta = w.copy(), float(delta)
-    scale, slow, linear, increment = None, 0, None, np.inf
+    scale, slow = None, 0
     for iteration in range(1, max_newton + 1):
         g = surface.residual(w, delta)
         c = direction @ (_observables(surface, w, delta) - anchor) - ds
         rhs = -np.append(g, c)
-        reuse = increment <= REUSE * (1.0 + np.max(np.abs(w)))
-        if reuse:
+        if linear is not None:
             linear = linear.moved_to(surface, w, delta, direction)
+        if linear is not None:
             dw, dd = linear.solve(rhs)
-        if not (reuse and linear.converged):
+        if linear is None or not linear.converged:
             linear = Linearisation(surface, w, delta, direction)
             dw, dd = linear.solve(rhs)
         if not (np.isfinite(dd) and np.all(np.isfinite(dw))):
@@ -365,7 +450,8 @@ def follow(surface, w, delta, heading, settings, *, until, stop_at_fold=False, o
             w_guess = relax_edge(surface, w_guess, d_guess,
                                  limit=np.max(np.abs(w_guess - result.states[-1])))
             step = correct(surface, w_guess, d_guess, row, anchor, ds * (row @ t),
-                           tol=s.tol, max_newton=s.max_newton, patience=s.patience)
+                           tol=s.tol, max_newton=s.max_newton, patience=s.patience,
+                           linear=linear)
         if step is not None:
             # The tangent (and stability) from the last Newton matrix, whose point is within
             # √tol of the new one: one factorisation per point fewer (the events move by < 1e-6).

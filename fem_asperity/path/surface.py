@@ -180,6 +180,13 @@ class LJSurface(SurfaceShape):
         jac.reshape(-1)[self._spring_entries] -= self.load_factor * (self._spring_map @ slope)
         return jac
 
+    def tangent_block(self, slope, first, last):
+        """The diagonal block [first:last, first:last] of `tangent_matrix(slope)`."""
+        local = self.interp[:, first:last]
+        spring = (local.T @ local.multiply(slope[:, None])).toarray()
+        return self._stiffness32[first:last, first:last] - (self.load_factor * spring).astype(
+            np.float32)
+
     def tangent_product(self, slope, x):
         """(∂g/∂w) x in double precision for the spring `slope` (from `sensitivities`)."""
         return self.stiffness @ x - self.load_factor * (self.interp_t @ (slope * (self.interp @ x)))
