@@ -5,7 +5,7 @@ surface integrals weighted by r), so `path.surface.LJSurface` and the continuati
 
 Galerkin form on a radial grid of linear elements: traction p and deflection w are both
 piecewise linear with nodal values; with M = ∫ φᵢ φⱼ r dr and B = ∫ φᵢ(r) u[φⱼ](r) r dr (u the
-Boussinesq deflection of a hat traction, `boussinesq.displacement_matrix`), a load vector
+Boussinesq deflection of a hat traction, `boussinesq.galerkin_matrix`), a load vector
 f = ∫ p φᵢ r dr gives p = M⁻¹ f and M w = B p, so the compliance is C = M⁻¹ B M⁻¹, symmetric and
 positive definite like the FE's. The half-space is infinite: there is no truncation of the
 solid, only of the traction beyond the last node.
@@ -16,7 +16,7 @@ from scipy.linalg import cho_solve_banded, cholesky_banded
 from scipy.sparse import csr_matrix
 
 from ..plumbing.errors import InputError
-from .boussinesq import displacement_matrix
+from .boussinesq import galerkin_matrix, quadrature
 from .layered import layer_correction
 
 
@@ -38,32 +38,31 @@ class BoussinesqSurface:
     with the bonded layer of `solid` (`fe.Solid`; its layer's half-space plus the correction of
     `layered.layer_correction`).
 
-    The `operator.ElasticSurface` interface: r_nodes, r_quad (Gauss points, `quad_points` per
-    element), weights (Gauss weight × r), interp (nodal values → values at r_quad), compliance
-    (dense C), dofs (unknowns: the surface nodes).
+    The `operator.ElasticSurface` interface: r_nodes, r_quad (Gauss points,
+    `boussinesq.quadrature`), weights (Gauss weight × r), interp (nodal values → values at
+    r_quad), compliance (dense C), dofs (unknowns: the surface nodes).
     """
 
-    def __init__(self, nodes, *, quad_points=4, solid=None):
+    def __init__(self, nodes, *, solid=None):
         nodes = np.asarray(nodes, dtype=float)
         if nodes[0] != 0.0 or np.any(np.diff(nodes) <= 0.0):
             raise InputError("the radial grid must start at 0 and increase")
-        x, w = np.polynomial.legendre.leggauss(quad_points)
-        x, w = 0.5 * (x + 1.0), 0.5 * w
-        a, length = nodes[:-1], np.diff(nodes)
+        points, weights, x = quadrature(nodes)
+        elements, per = points.shape
         self.r_nodes = nodes
-        self.r_quad = (a[:, None] + length[:, None] * x).ravel()
-        self.weights = (length[:, None] * w).ravel() * self.r_quad
-        element = np.repeat(np.arange(a.size), quad_points)
+        self.r_quad = points.ravel()
+        self.weights = weights.ravel() * self.r_quad
+        element = np.repeat(np.arange(elements), per)
         rows = np.tile(np.arange(self.r_quad.size), 2)
         cols = np.concatenate([element, element + 1])
-        values = np.concatenate([np.tile(1.0 - x, a.size), np.tile(x, a.size)])
+        values = np.concatenate([np.tile(1.0 - x, elements), np.tile(x, elements)])
         self.interp = csr_matrix((values, (rows, cols)), shape=(self.r_quad.size, nodes.size))
         weighted = self.interp.T.multiply(self.weights).tocsr()
         mass = weighted @ self.interp  # tridiagonal: banded Cholesky solves
         banded = np.zeros((2, nodes.size))
         banded[0, 1:], banded[1] = mass.diagonal(1), mass.diagonal()
         factor = cholesky_banded(banded), False
-        coupling = weighted @ displacement_matrix(nodes, self.r_quad)
+        coupling = galerkin_matrix(nodes)
         if solid is not None and solid.layer_thickness is not None:
             coupling = (coupling / solid.layer_modulus_ratio
                         + layer_correction(nodes, solid))

@@ -24,6 +24,7 @@ The rule is checked against adaptive quadrature to 1e-12 in the tests.
 from math import gamma
 
 import numpy as np
+from scipy.sparse import coo_matrix
 from scipy.special import comb, ellipkm1, roots_legendre
 
 #: Points of the Gauss-Legendre and of the logarithmic Gauss rules;
@@ -34,6 +35,10 @@ _Q_TAYLOR = np.array([0.5 * (gamma(n + 0.5) / (gamma(0.5) * gamma(n + 1))) ** 2 
 #: Kernel evaluations per chunk of the dense far-field sum (bounds memory at ~50 MB). Not pinned
 #: by a test.
 _CHUNK = 2_000_000
+#: Elements per block of `galerkin_matrix`'s far-field sum: a block holds (4 × 128)² kernel
+#: values (2 MB); the smaller the blocks the nearer half the evaluations (58 % with six blocks
+#: across). Not pinned by a test.
+_BLOCK = 128
 
 
 def log_gauss(n):
@@ -129,6 +134,27 @@ def _from_point_live(r, c, a, length):
     return i0, i1
 
 
+def _near_pairs(r, a, b, length, ratio):
+    """(∫ kernel(r, s) ds, ∫ kernel(r, s) (s − a)/length ds) over the elements [a, b] for arrays
+    of pairs nearer than _NEAR[1] lengths (`ratio`: distance in lengths, < 0 inside): the
+    8-point rule from _NEAR[0] lengths, the singular split below."""
+    i0, i1 = np.empty(r.size), np.empty(r.size)
+    mid = ratio >= _NEAR[0]
+    x, wx = _NEAR_RULE
+    k = kernel(r[mid, None], a[mid, None] + length[mid, None] * x) * (wx * length[mid, None])
+    i0[mid], i1[mid] = k.sum(1), k @ x
+    close = ~mid
+    hi0, hi1 = _from_point(r[close], b[close], a[close], length[close])
+    lo0, lo1 = _from_point(r[close], a[close], a[close], length[close])
+    i0[close], i1[close] = hi0 - lo0, hi1 - lo1
+    return i0, i1
+
+
+def _distance_ratio(r, a, b, length):
+    """Distance from the radii r (column) to the elements [a, b] in element lengths, < 0 inside."""
+    return np.maximum(a - r, r - b) / length
+
+
 def displacement_matrix(nodes, r):
     """A with u(r) = A @ p: the downward deflection at radii `r` > 0 under the piecewise-linear
     traction with nodal values p on the radial grid `nodes` (increasing, from 0; zero beyond)."""
@@ -139,7 +165,7 @@ def displacement_matrix(nodes, r):
     rows = max(1, _CHUNK // (_POINTS * a.size))
     for start in range(0, r.size, rows):
         rr = r[start:start + rows]
-        ratio = np.maximum(a - rr[:, None], rr[:, None] - b) / length  # < 0 inside an element
+        ratio = _distance_ratio(rr[:, None], a, b, length)
         ratio[rr == 0.0] = np.inf  # the kernel is 2 at r = 0: any rule is exact
         # Every pair by the far rule, broadcast over contiguous arrays (gathering the pairs of
         # each tier cost more than the kernel); then the nearer pairs again, by their rules.
@@ -148,17 +174,96 @@ def displacement_matrix(nodes, r):
             k = kernel(rr[:, None, None], a[:, None] + length[:, None] * x) * (
                 wx * length[:, None])
         i0, i1 = k.sum(-1).ravel(), (k @ x).ravel()
-        pairs = np.flatnonzero((ratio >= _NEAR[0]) & (ratio < _NEAR[1]))
+        pairs = np.flatnonzero(ratio < _NEAR[1])
         q, e = np.divmod(pairs, a.size)
-        x, wx = _NEAR_RULE
-        k = kernel(rr[q, None], a[e, None] + length[e, None] * x) * (wx * length[e, None])
-        i0[pairs], i1[pairs] = k.sum(1), k @ x
-        pairs = np.flatnonzero(ratio < _NEAR[0])
-        q, e = np.divmod(pairs, a.size)
-        hi0, hi1 = _from_point(rr[q], b[e], a[e], length[e])
-        lo0, lo1 = _from_point(rr[q], a[e], a[e], length[e])
-        i0[pairs], i1[pairs] = hi0 - lo0, hi1 - lo1
+        i0[pairs], i1[pairs] = _near_pairs(rr[q], a[e], b[e], length[e], ratio.ravel()[pairs])
         i0, i1 = i0.reshape(ratio.shape), i1.reshape(ratio.shape)
         A[start:start + rows, :-1] += i0 - i1
         A[start:start + rows, 1:] += i1
     return A
+
+
+def quadrature(nodes):
+    """(points, weights, x) of the Galerkin form's outer rule on the elements of `nodes`: the far
+    rule's Gauss points, (elements, points per element), the weights without the factor r, and
+    the points' positions x in [0, 1] on each element."""
+    a, length = nodes[:-1, None], np.diff(nodes)[:, None]
+    x, wx = _FAR_RULE
+    return a + length * x, length * wx, x
+
+
+def symmetric_kernel(r, s):
+    """r · kernel(r, s) = (4/π) rs/(r+s) K(4rs/(r+s)²), symmetric in r and s."""
+    total = r + s
+    m1 = s - r
+    m1 /= total
+    m1 *= m1
+    product = r * s
+    product /= total
+    product *= 4.0 / np.pi
+    product *= ellipkm1(m1)
+    return product
+
+
+def galerkin_matrix(nodes):
+    """B with B_ij = ∫ φᵢ(r) u[φⱼ](r) r dr for the hat functions φ of the radial grid `nodes`:
+    the deflection `displacement_matrix` tested against φᵢ by the outer rule `quadrature`, so
+    equal to Nᵀ diag(W r) `displacement_matrix(nodes, r_quad)` (N: the hat functions at those
+    points), but in about half the kernel evaluations. By the far rule on the source element,
+    whose points are the outer rule's, the integrand w_q w_t r_q kernel(r_q, s_t) is symmetric
+    (`symmetric_kernel`), so each block of element pairs is evaluated once for both orders;
+    the pairs nearer than _NEAR[1] lengths are then corrected to their own rules
+    (`_near_pairs`)."""
+    points, weights, x = quadrature(nodes)
+    a, b = nodes[:-1], nodes[1:]
+    length, n_el, per = b - a, a.size, points.shape[1]
+    basis = np.stack([1.0 - x, x], axis=1)  # (point, end node)
+    B = np.zeros((nodes.size, nodes.size))
+    near = []  # (receiving point, source element) of the near pairs
+
+    def add(block, rows, cols):
+        """B += the hat functions' sums of `block` (receiving points × source points of the
+        elements `rows` and `cols`) in both orders (one if rows is cols); note the near pairs."""
+        m, n = rows.stop - rows.start, cols.stop - cols.start
+        ends = np.matmul(basis.T, block.reshape(m, per, n * per))  # (m, 2, n · per)
+        ends = (ends.reshape(-1, per) @ basis).reshape(m, 2, n, 2)
+        orders = ((rows, cols),) if rows == cols else ((rows, cols), (cols, rows))
+        for i in range(2):
+            for j in range(2):
+                B[rows.start + i:rows.stop + i, cols.start + j:cols.stop + j] += ends[:, i, :, j]
+                if rows != cols:
+                    B[cols.start + j:cols.stop + j, rows.start + i:rows.stop + i] += (
+                        ends[:, i, :, j].T)
+        for receiving, source in orders:
+            q, e = np.nonzero(_distance_ratio(points[receiving].reshape(-1, 1), a[source],
+                                              b[source], length[source]) < _NEAR[1])
+            near.append((q + receiving.start * per, e + source.start))
+
+    for first in range(0, n_el, _BLOCK):
+        rows = slice(first, min(first + _BLOCK, n_el))
+        for start in range(first, n_el, _BLOCK):
+            cols = slice(start, min(start + _BLOCK, n_el))
+            with np.errstate(divide="ignore", invalid="ignore"):  # r = s: a near pair's
+                block = symmetric_kernel(points[rows].reshape(-1, 1), points[cols].reshape(1, -1))
+            if start == first:
+                np.fill_diagonal(block, 0.0)  # the points r = s: their pairs are corrected
+            block *= weights[rows].reshape(-1, 1) * weights[cols].reshape(1, -1)
+            add(block, rows, cols)
+    q, e = (np.concatenate(column) for column in zip(*near))
+    r = points.ravel()[q]
+    i0, i1 = _near_pairs(r, a[e], b[e], length[e], _distance_ratio(r, a[e], b[e], length[e]))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        summed = symmetric_kernel(r[:, None], points[e]) * weights[e]  # what the block added
+    summed[r[:, None] == points[e]] = 0.0
+    weight = weights.ravel()[q]
+    corrections = (r * (i0 - i1) - summed @ basis[:, 0], r * i1 - summed @ basis[:, 1])
+    receiving = q // per
+    values, at_row, at_col = [], [], []
+    for end, correction in enumerate(corrections):
+        for node in (0, 1):
+            values.append(weight * basis[q % per, node] * correction)
+            at_row.append(receiving + node)
+            at_col.append(e + end)
+    values, at_row, at_col = map(np.concatenate, (values, at_row, at_col))
+    B += coo_matrix((values, (at_row, at_col)), shape=B.shape).toarray()
+    return B
