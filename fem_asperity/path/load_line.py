@@ -43,7 +43,6 @@ def _fold(curve, z, i, j):
                     + np.diff(curve.p[three]) ** 2)
     arc = np.concatenate([[0.0], np.cumsum(steps)])
     s_star, z_star = parabola_vertex(arc, z[three])
-    s_star = float(np.clip(s_star, arc[0], arc[-1]))
     row = {c: float(np.polyval(np.polyfit(arc, getattr(curve, c)[three], 2), s_star))
            for c in COLUMNS}
     return float(z_star), row

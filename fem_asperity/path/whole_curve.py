@@ -140,7 +140,6 @@ def fold_by_parabola(curve, i, j, descending):
     steps = np.hypot(np.diff(curve.x[three]), np.diff(curve.delta[three]))
     arc = np.concatenate([[0.0], np.cumsum(steps)])
     s_star, delta = parabola_vertex(arc, curve.delta[three])
-    s_star = float(np.clip(s_star, arc[0], arc[-1]))
     values = {c: float(np.polyval(np.polyfit(arc, getattr(curve, c)[three], 2), s_star))
               for c in ("x", "p", "a_c")}
     return float(delta), values
