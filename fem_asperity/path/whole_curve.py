@@ -21,8 +21,8 @@ COLUMNS = ("delta", "x", "p", "area", "a_c")
 #: test_near_events.py::test_the_pull_off_at_large_mu_is_the_extremum_not_a_sample.
 ROOT_NEWTON = 40
 #: A point of `root_along` farther from sample k than BRACKET_REACH times sample k + 1 is on
-#: another part of the curve (near a fold the constraint plane holds far-away equilibria: μ = 50
-#: `draft` once landed a jump-out at δ̄o = −1.1e6) and ends the search. Not pinned by a test.
+#: another part of the curve (near a fold the constraint plane also holds far-away equilibria)
+#: and ends the search. Not pinned by a test.
 BRACKET_REACH = 2.0
 #: Intervals searched for an extremum of P̄, relative to where the stored tangents change sign:
 #: there, then one before and one after (`refine_force_extrema`). At μ = 7 (BEM fine, refined)
