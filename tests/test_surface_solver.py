@@ -153,3 +153,40 @@ def test_a_linearisation_declines_to_move_where_the_tip_left_its_edge_block(trac
     linear = Linearisation(surface, w, delta, row)
     assert edge_block(surface, w, delta)[0] > 0
     assert linear.moved_to(surface, trace.states[before], trace.delta[before], row) is None
+
+
+class _SpringlessSurface:
+    """The few surface operators `Linearisation` asks for, with a given tangent matrix."""
+
+    def __init__(self, jac):
+        n = jac.shape[0]
+        self.jac, self.r_nodes, self.load_factor = jac, np.linspace(0.0, 1.0, n), 1.0
+
+    def sensitivities(self, w, delta):
+        return np.full(w.size, 1e-3), 1.0, None
+
+    def tangent_matrix(self, slope, precision=np.float32):
+        return self.jac.astype(precision)
+
+    def tangent_product(self, slope, x):
+        return self.jac @ x
+
+    def crack_tip(self, w, delta):
+        return 0.5
+
+
+@pytest.mark.parametrize("softest, stable", [(1e-10, True), (-1e-10, False)])
+def test_stability_below_single_precision_is_decided_in_double(softest, stable):
+    """A tangent whose softest eigenvalue is ±1e-10 of the stiffest (at μ = 50 the crack tip's
+    is 1e-9): the single-precision factorisation cannot tell its sign (the premise, checked),
+    the flag is still right."""
+    rng = np.random.default_rng(3)
+    q, _ = np.linalg.qr(rng.standard_normal((80, 80)))
+    jac = (q * np.concatenate([[softest], np.logspace(-3, 0, 79)])) @ q.T
+    jac = 0.5 * (jac + jac.T)
+    surface = _SpringlessSurface(jac)
+    if stable:
+        with pytest.raises(LinAlgError):
+            EdgeBlockCholesky(jac.astype(np.float32), (35, 45))
+    linear = Linearisation(surface, np.zeros(80), 0.0, np.array([0.0, 1.0, 0.0]))
+    assert linear.stable is stable

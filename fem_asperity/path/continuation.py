@@ -167,7 +167,7 @@ def edge_block(surface, w, delta):
 
 
 class EdgeBlockCholesky:
-    """Cholesky factorisation of a symmetric positive definite matrix J (single precision) with
+    """Cholesky factorisation of a symmetric positive definite matrix J (in J's precision) with
     its nodes ordered bulk first, edge block (`edge_block`) last:
 
         J = [[L Lᵀ, L M], [Mᵀ Lᵀ, J_ee]],   J_ee − Mᵀ M = S (the edge's Schur complement),
@@ -193,9 +193,9 @@ class EdgeBlockCholesky:
         return moved
 
     def solve(self, rhs):
-        """J⁻¹ rhs in single precision."""
+        """J⁻¹ rhs in the factorisation's precision."""
         first, last = self.block
-        rhs = rhs.astype(np.float32)
+        rhs = rhs.astype(self._l.dtype)
         y = solve_triangular(self._l, rhs[self._bulk], lower=True, check_finite=False)
         z = cho_solve(self._schur, rhs[first:last] - self._m.T @ y, check_finite=False)
         x = np.empty(rhs.size)
@@ -205,6 +205,14 @@ class EdgeBlockCholesky:
         return x
 
 
+def _cholesky_or_none(jac, block):
+    """`EdgeBlockCholesky` of `jac`, or None where it is not positive definite."""
+    try:
+        return EdgeBlockCholesky(jac, block)
+    except LinAlgError:
+        return None
+
+
 class Linearisation:
     """The bordered Newton matrix [[∂g/∂w, ∂g/∂δ], [row · ∂o/∂(w, δ)]] at (w, δ), factorised.
 
@@ -212,10 +220,13 @@ class Linearisation:
     (`EdgeBlockCholesky`) and block elimination of the border (cheaper than LU); otherwise, or
     if the border is degenerate, by LU of the whole matrix. `stable` records which, so stability
     comes for free with every point. The factorisation is in single precision (faster than
-    double) and each solve is refined once against the double-precision bordered matrix, so a
-    solution carries about (κ·6e-8)² relative error for the bordered system's condition number κ
-    (a linearisation moved to a nearby state, `moved_to`, is refined up to MOVED_REFINEMENTS
-    times).
+    double), in double where single fails: single precision cannot tell the sign of an
+    eigenvalue below about 1e-7 of the largest, and at μ = 50 (BEM `draft`) the crack tip's
+    softest mode is 1e-9 of the stiffest; a stable state flagged unstable there, with no fold,
+    ended the curve (test_surface_solver.py). Each solve is refined once against the
+    double-precision bordered matrix, so a solution carries about (κ·6e-8)² relative error for
+    the bordered system's condition number κ (a linearisation moved to a nearby state,
+    `moved_to`, is refined up to MOVED_REFINEMENTS times).
     """
 
     def __init__(self, surface, w, delta, row):
@@ -224,11 +235,11 @@ class Linearisation:
         border = self._set_products(surface, row, g_delta, p_delta, slope)
         jac = surface.tangent_matrix(slope)
         self.refinements, self.moved, self.converged = 1, False, True
-        try:
-            self._cho = EdgeBlockCholesky(jac, edge_block(surface, w, delta))
-            self.stable = True
-        except LinAlgError:
-            self._cho, self.stable = None, False
+        block = edge_block(surface, w, delta)
+        self._cho = _cholesky_or_none(jac, block)
+        if self._cho is None:
+            self._cho = _cholesky_or_none(surface.tangent_matrix(slope, np.float64), block)
+        self.stable = self._cho is not None
         if self._cho is not None and self._eliminate(border):
             return
         matrix = np.empty((n + 1, n + 1), dtype=np.float32, order="F")  # LU in place

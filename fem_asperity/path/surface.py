@@ -173,10 +173,10 @@ class LJSurface(SurfaceShape):
         slope = self.weights * traction_slope(self.gap(w, delta))
         return self.load_factor * (self.interp_t @ slope), float(slope.sum()), slope
 
-    def tangent_matrix(self, slope):
+    def tangent_matrix(self, slope, precision=np.float32):
         """∂g/∂w for the spring `slope`, symmetric, in single precision (it is only factorised,
-        see `continuation.Linearisation`)."""
-        jac = self._stiffness32.copy()
+        see `continuation.Linearisation`) or `precision` (np.float64)."""
+        jac = (self._stiffness32 if precision == np.float32 else self.stiffness).astype(precision)
         jac.reshape(-1)[self._spring_entries] -= self.load_factor * (self._spring_map @ slope)
         return jac
 
