@@ -190,3 +190,19 @@ def test_stability_below_single_precision_is_decided_in_double(softest, stable):
             EdgeBlockCholesky(jac.astype(np.float32), (35, 45))
     linear = Linearisation(surface, np.zeros(80), 0.0, np.array([0.0, 1.0, 0.0]))
     assert linear.stable is stable
+
+
+def test_each_point_changing_stability_has_its_own_flag():
+    """Along the whole curve at μ = 2 (BEM `draft`, unstable branch included), where the flag
+    changes between neighbouring points it is that point's own: a fresh factorisation there
+    agrees (a flag from the last Newton iterate can be wrong where the softest mode is near
+    zero)."""
+    result = solve_discretised(2.0, discretisation(2.0, "draft", method="bem"),
+                               unstable_branch=True)
+    surface, trace = result.model.surface, result.model.trace
+    row = np.array([0.0, 1.0, 0.0])
+    changes = [k for k in range(1, len(trace.stable)) if trace.stable[k] != trace.stable[k - 1]]
+    assert changes
+    for k in changes:
+        fresh = Linearisation(surface, trace.states[k], trace.delta[k], row)
+        assert fresh.stable == trace.stable[k]

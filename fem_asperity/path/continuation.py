@@ -469,11 +469,14 @@ def follow(surface, w, delta, heading, settings, *, until, stop_at_fold=False, o
             w_new, d_new, its, linear = step
             result.newton_iterations += its
             tangent_new = linear.tangent()
-            if linear.moved and (tangent_new[2][1] * t[1] <= 0.0 or not linear.converged
-                                 or not linear.stable):
-                # δ̄o turned (a fold, where stability changes) or an iterate next to a fold was
-                # unstable: the flag must be this point's (a stale flag before the fold leaves no
-                # root of dδ̄o/ds to find, and the parabola misplaces the fold).
+            turned = tangent_new[2][1] * t[1] <= 0.0
+            if (linear.moved and (turned or not linear.converged)
+                    or linear.stable != result.stable[-1]):
+                # δ̄o turned (a fold, where stability changes), or the flag says stability
+                # changed: the flag must be this point's, not an earlier iterate's (a stale flag
+                # before the fold leaves no root of dδ̄o/ds to find, and the parabola misplaces
+                # the fold; at μ = 50, BEM `draft`, an iterate 2.5e-3 ε away was unstable, the
+                # point stable, and the curve ended in a fold where δ̄o did not turn).
                 linear = Linearisation(surface, w_new, d_new, row)
                 tangent_new = linear.tangent()
             turn = np.arccos(np.clip(tangent_new[2] @ t, -1.0, 1.0))
