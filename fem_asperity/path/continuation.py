@@ -222,11 +222,10 @@ class Linearisation:
     comes for free with every point. The factorisation is in single precision (faster than
     double), in double where single fails: single precision cannot tell the sign of an
     eigenvalue below about 1e-7 of the largest, and at μ = 50 (BEM `draft`) the crack tip's
-    softest mode is 1e-9 of the stiffest; a stable state flagged unstable there, with no fold,
-    ended the curve (test_surface_solver.py). Each solve is refined once against the
-    double-precision bordered matrix, so a solution carries about (κ·6e-8)² relative error for
-    the bordered system's condition number κ (a linearisation moved to a nearby state,
-    `moved_to`, is refined up to MOVED_REFINEMENTS times).
+    softest mode is 1e-9 of the stiffest (test_surface_solver.py). Each solve is refined once
+    against the double-precision bordered matrix, so a solution carries about (κ·6e-8)²
+    relative error for the bordered system's condition number κ (a linearisation moved to a
+    nearby state, `moved_to`, is refined up to MOVED_REFINEMENTS times).
     """
 
     def __init__(self, surface, w, delta, row):
