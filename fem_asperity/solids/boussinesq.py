@@ -21,6 +21,7 @@ s-plane. The integral over each element of the radial grid is therefore done in 
 The rule is checked against adaptive quadrature to 1e-12 in the tests.
 """
 
+from functools import cache
 from math import gamma
 
 import numpy as np
@@ -35,10 +36,16 @@ _Q_TAYLOR = np.array([0.5 * (gamma(n + 0.5) / (gamma(0.5) * gamma(n + 1))) ** 2 
 #: Kernel evaluations per chunk of the dense far-field sum (bounds memory at ~50 MB). Not pinned
 #: by a test.
 _CHUNK = 2_000_000
-#: Elements per block of `galerkin_matrix`'s far-field sum: a block holds (4 × 128)² kernel
-#: values (2 MB); the smaller the blocks the nearer half the evaluations (58 % with six blocks
-#: across). Not pinned by a test.
-_BLOCK = 128
+#: Elements per block, each way, that `galerkin_matrix` evaluates in full where the elements are
+#: not well separated (`_partition`): the smaller, the fewer kernel values, the more blocks
+#: (numpy calls). Not pinned by a test.
+_LEAF = 32
+#: Chebyshev points per variable of a well-separated block of `galerkin_matrix`: the kernel is
+#: analytic within the Bernstein ellipse of parameter ρ ≥ 3 + √8 about each span (the other
+#: span, where it is singular, lies at least the larger span's extent away), so the
+#: interpolation error falls like ρ^(−20) ≈ 5e-16 (times Lebesgue constants ~10);
+#: test_bem.py::test_galerkin_matrix_is_the_tested_deflection_tested_against_the_hat_functions.
+_CHEBYSHEV = 20
 
 
 def log_gauss(n):
@@ -205,15 +212,62 @@ def symmetric_kernel(r, s):
     return product
 
 
+def _chebyshev(lo, hi, targets):
+    """(points, L): the _CHEBYSHEV Chebyshev points of the first kind on [lo, hi] and the values
+    of their Lagrange polynomials at `targets` (barycentric form), L of shape (targets, points)."""
+    angles = (2 * np.arange(_CHEBYSHEV) + 1) * np.pi / (2 * _CHEBYSHEV)
+    points = 0.5 * (lo + hi) + 0.5 * (hi - lo) * np.cos(angles)
+    offset = targets[:, None] - points
+    hits = offset == 0.0
+    offset[hits] = 1.0
+    terms = (-1.0) ** np.arange(_CHEBYSHEV) * np.sin(angles) / offset
+    values = terms / terms.sum(axis=1, keepdims=True)
+    on_point = hits.any(axis=1)
+    values[on_point] = hits[on_point]
+    return points, values
+
+
+def _partition(a, b, rows, cols):
+    """The upper triangle (cols not before rows) of the element pairs, as (rows, cols,
+    separated) blocks of element slices: `separated` blocks lie at least their larger extent
+    and _NEAR[1] of their longest element apart (a smooth kernel there: `_interpolated`);
+    the others are at most _LEAF elements each way (the kernel in full)."""
+    m, n = rows.stop - rows.start, cols.stop - cols.start
+    if rows == cols:
+        if m <= _LEAF:
+            yield rows, cols, False
+            return
+        half = slice(rows.start, rows.start + m // 2), slice(rows.start + m // 2, rows.stop)
+        yield from _partition(a, b, half[0], half[0])
+        yield from _partition(a, b, half[0], half[1])
+        yield from _partition(a, b, half[1], half[1])
+        return
+    gap = a[cols.start] - b[rows.stop - 1]
+    extent = max(b[rows.stop - 1] - a[rows.start], b[cols.stop - 1] - a[cols.start])
+    longest = max(np.max(b[rows] - a[rows]), np.max(b[cols] - a[cols]))
+    if gap >= max(extent, _NEAR[1] * longest):
+        yield rows, cols, True
+    elif m <= _LEAF and n <= _LEAF:
+        yield rows, cols, False
+    elif m >= n:
+        yield from _partition(a, b, slice(rows.start, rows.start + m // 2), cols)
+        yield from _partition(a, b, slice(rows.start + m // 2, rows.stop), cols)
+    else:
+        yield from _partition(a, b, rows, slice(cols.start, cols.start + n // 2))
+        yield from _partition(a, b, rows, slice(cols.start + n // 2, cols.stop))
+
+
 def galerkin_matrix(nodes):
     """B with B_ij = ∫ φᵢ(r) u[φⱼ](r) r dr for the hat functions φ of the radial grid `nodes`:
     the deflection `displacement_matrix` tested against φᵢ by the outer rule `quadrature`, so
     equal to Nᵀ diag(W r) `displacement_matrix(nodes, r_quad)` (N: the hat functions at those
-    points), but in about half the kernel evaluations. By the far rule on the source element,
-    whose points are the outer rule's, the integrand w_q w_t r_q kernel(r_q, s_t) is symmetric
-    (`symmetric_kernel`), so each block of element pairs is evaluated once for both orders;
-    the pairs nearer than _NEAR[1] lengths are then corrected to their own rules
-    (`_near_pairs`)."""
+    points), in far fewer kernel evaluations. By the far rule on the source element, whose
+    points are the outer rule's, the integrand w_q w_t r_q kernel(r_q, s_t) is symmetric
+    (`symmetric_kernel`), so each block of element pairs (`_partition`) is evaluated once for
+    both orders: in full next to the diagonal, where the pairs nearer than _NEAR[1] lengths are
+    then corrected to their own rules (`_near_pairs`), and through the kernel's values at
+    _CHEBYSHEV × _CHEBYSHEV Chebyshev points where the elements lie apart (the kernel is
+    analytic there: `_CHEBYSHEV`)."""
     points, weights, x = quadrature(nodes)
     a, b = nodes[:-1], nodes[1:]
     length, n_el, per = b - a, a.size, points.shape[1]
@@ -221,34 +275,49 @@ def galerkin_matrix(nodes):
     B = np.zeros((nodes.size, nodes.size))
     near = []  # (receiving point, source element) of the near pairs
 
-    def add(block, rows, cols):
-        """B += the hat functions' sums of `block` (receiving points × source points of the
-        elements `rows` and `cols`) in both orders (one if rows is cols); note the near pairs."""
-        m, n = rows.stop - rows.start, cols.stop - cols.start
-        ends = np.matmul(basis.T, block.reshape(m, per, n * per))  # (m, 2, n · per)
-        ends = (ends.reshape(-1, per) @ basis).reshape(m, 2, n, 2)
-        orders = ((rows, cols),) if rows == cols else ((rows, cols), (cols, rows))
+    def add(ends, rows, cols):
+        """B += `ends` (rows' elements, their end node, cols' elements, their end node), in both
+        orders unless rows is cols."""
         for i in range(2):
             for j in range(2):
                 B[rows.start + i:rows.stop + i, cols.start + j:cols.stop + j] += ends[:, i, :, j]
                 if rows != cols:
                     B[cols.start + j:cols.stop + j, rows.start + i:rows.stop + i] += (
                         ends[:, i, :, j].T)
-        for receiving, source in orders:
+
+    def full(rows, cols):
+        """The hat functions' sums of the block's kernel values; notes its near pairs."""
+        m, n = rows.stop - rows.start, cols.stop - cols.start
+        with np.errstate(divide="ignore", invalid="ignore"):  # r = s: a near pair's
+            block = symmetric_kernel(points[rows].reshape(-1, 1), points[cols].reshape(1, -1))
+        if rows == cols:
+            np.fill_diagonal(block, 0.0)  # the points r = s: their pairs are corrected
+        block *= weights[rows].reshape(-1, 1) * weights[cols].reshape(1, -1)
+        ends = np.matmul(basis.T, block.reshape(m, per, n * per))  # (m, 2, n · per)
+        for receiving, source in ((rows, cols),) if rows == cols else ((rows, cols), (cols, rows)):
             q, e = np.nonzero(_distance_ratio(points[receiving].reshape(-1, 1), a[source],
                                               b[source], length[source]) < _NEAR[1])
             near.append((q + receiving.start * per, e + source.start))
+        return (ends.reshape(-1, per) @ basis).reshape(m, 2, n, 2)
 
-    for first in range(0, n_el, _BLOCK):
-        rows = slice(first, min(first + _BLOCK, n_el))
-        for start in range(first, n_el, _BLOCK):
-            cols = slice(start, min(start + _BLOCK, n_el))
-            with np.errstate(divide="ignore", invalid="ignore"):  # r = s: a near pair's
-                block = symmetric_kernel(points[rows].reshape(-1, 1), points[cols].reshape(1, -1))
-            if start == first:
-                np.fill_diagonal(block, 0.0)  # the points r = s: their pairs are corrected
-            block *= weights[rows].reshape(-1, 1) * weights[cols].reshape(1, -1)
-            add(block, rows, cols)
+    @cache
+    def factor(start, stop):
+        """(Chebyshev points on the elements start:stop, hat functions' weighted sums of their
+        Lagrange polynomials, shape (2 × elements, _CHEBYSHEV))."""
+        cheb, values = _chebyshev(a[start], b[stop - 1], points[start:stop].ravel())
+        weighted = values.reshape(stop - start, per, _CHEBYSHEV) * weights[start:stop, :, None]
+        return cheb, np.matmul(basis.T, weighted).reshape(2 * (stop - start), _CHEBYSHEV)
+
+    def interpolated(rows, cols):
+        """The same sums through the kernel at Chebyshev points of the two elements' spans."""
+        (r_cheb, left), (s_cheb, right) = factor(rows.start, rows.stop), factor(cols.start,
+                                                                                 cols.stop)
+        ends = left @ symmetric_kernel(r_cheb[:, None], s_cheb[None, :]) @ right.T
+        return ends.reshape(rows.stop - rows.start, 2, cols.stop - cols.start, 2)
+
+    every = slice(0, n_el)
+    for rows, cols, separated in _partition(a, b, every, every):
+        add(interpolated(rows, cols) if separated else full(rows, cols), rows, cols)
     q, e = (np.concatenate(column) for column in zip(*near))
     r = points.ravel()[q]
     i0, i1 = _near_pairs(r, a[e], b[e], length[e], _distance_ratio(r, a[e], b[e], length[e]))
