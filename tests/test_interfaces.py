@@ -3,11 +3,12 @@ method has its own discretisation type whose refinements touch its own fields.""
 
 import numpy as np
 import pytest
+from scipy.linalg import LinAlgError
 
 from fem_asperity.path.grids import EdgeGrids, FixedGrid, Grids
 from fem_asperity.plumbing.errors import InputError
 from fem_asperity.solids.fe import Solid
-from fem_asperity.solids.operator import ElasticSurface
+from fem_asperity.solids.operator import ElasticSurface, spd_inverse
 from fem_asperity.solver.presets import (
     ESTIMATE_GRADING,
     BEMDiscretisation,
@@ -59,3 +60,18 @@ def test_the_uniform_boundary_integral_takes_a_layer_the_edge_grids_refuse_it():
     assert not np.allclose(uniform.elastic.compliance, homogeneous.elastic.compliance)
     with pytest.raises(InputError, match="homogeneous"):
         discretisation(2.0, "draft", method="bem", track_edge=True).grids(2.0, solid=layer)
+
+
+def test_spd_inverse_inverts_and_refuses_an_indefinite_matrix():
+    """The stiffness is the compliance's inverse by `spd_inverse` (both solids): against
+    numpy's inverse on a matrix of condition 1e6, and a LinAlgError, not a wrong answer, for an
+    eigenvalue −1e-6."""
+    rng = np.random.default_rng(4)
+    q, _ = np.linalg.qr(rng.standard_normal((60, 60)))
+    matrix = (q * np.logspace(-6, 0, 60)) @ q.T
+    matrix = 0.5 * (matrix + matrix.T)
+    inverse = spd_inverse(matrix)
+    assert np.array_equal(inverse, inverse.T)
+    np.testing.assert_allclose(inverse, np.linalg.inv(matrix), rtol=0, atol=1e-8 * 1e6)
+    with pytest.raises(LinAlgError):
+        spd_inverse(matrix - 2e-6 * np.eye(60))

@@ -8,13 +8,12 @@ h = δ + r²/2 − N w the Derjaguin gap (or the exact sphere profile, see `derj
 """
 
 import numpy as np
-from scipy.linalg import cho_factor, cho_solve
 from scipy.sparse import csr_matrix
 
 from ..closed_forms.lj import scaled_potential as potential
 from ..closed_forms.lj import scaled_traction as traction
 from ..closed_forms.lj import scaled_traction_slope as traction_slope
-from ..solids.operator import ElasticSurface
+from ..solids.operator import ElasticSurface, spd_inverse
 
 #: A Newton step never lets a gap fall below this fraction of its current value. Not pinned by a
 #: test.
@@ -145,9 +144,7 @@ class LJSurface(SurfaceShape):
         self.interp_t = elastic.interp.T.tocsr()
         self.weights = elastic.weights
         self.profile = derjaguin_profile(elastic.r_quad, radius_ratio)
-        factor = cho_factor(elastic.compliance)
-        self.stiffness = cho_solve(factor, np.eye(elastic.compliance.shape[0]))
-        self.stiffness = 0.5 * (self.stiffness + self.stiffness.T)
+        self.stiffness = spd_inverse(elastic.compliance)
         self._stiffness32 = self.stiffness.astype(np.float32)
         self._spring_entries, self._spring_map = _spring_pattern(self.interp)
 

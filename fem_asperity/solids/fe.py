@@ -17,7 +17,6 @@ truncated at a finite size; what lies outside is restored by the far field of th
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.linalg import cho_factor, cho_solve
 from scipy.sparse import coo_matrix
 from scipy.sparse.linalg import splu
 from skfem import (
@@ -33,6 +32,7 @@ from skfem import (
 
 from ..plumbing.checks import in_range, poisson
 from ..plumbing.errors import InputError
+from .operator import spd_inverse
 
 ELEMENTS = {1: ElementTriP1, 2: ElementTriP2}
 #: SuperLU options for a symmetric positive definite matrix: symmetric ordering, no pivoting.
@@ -167,9 +167,7 @@ class HalfSpace:
         self._surface_position = np.searchsorted(self.free, self.surface_dofs)
         self._order, self._lu, schur = _factor_surface_last(
             condense(self.stiffness, D=fixed, expand=False).tocsc(), self._surface_position)
-        factor = cho_factor(0.5 * (schur + schur.T))
-        self.compliance = cho_solve(factor, np.eye(schur.shape[0]))
-        self.compliance = 0.5 * (self.compliance + self.compliance.T)
+        self.compliance = spd_inverse(0.5 * (schur + schur.T))
         self._far_field = self._outside_response()
         # The truncated solid is too stiff by the compliance of what lies outside it: near the
         # axis (r ≪ size) that is a uniform sink of the whole surface, per unit load sum.
