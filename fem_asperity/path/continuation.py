@@ -40,6 +40,19 @@ MOVED_REFINEMENTS, ACCEPT = 3, 1e-2
 #: matrix's eigenvalues move by up to 150). A moved linearisation whose tip left the middle half
 #: of its block factorises afresh. Not pinned by a test.
 EDGE_SHARE = 0.125
+#: Where a single-precision Cholesky factorisation of ∂g/∂w succeeds (it cannot tell the sign of
+#: an eigenvalue below ~1e-7 of the largest: rounding moves them that far), the softest
+#: eigenvalue is estimated by the Rayleigh quotient q (exact product) after SOFTEST_ITERATIONS
+#: inverse iterations with it. q ≥ SURE_SIGN of the matrix's scale: stable (a negative
+#: eigenvalue of ∂g/∂w is one below ~1e-7 of the factorised matrix, which the iterations would
+#: have found, amplified ≥ 20-fold each; FE `draft` at μ = 5: q is 1e-7 to 3e-5 of the scale).
+#: Smaller, once q changes by ≤ SETTLED of itself per iteration its error is second order in the
+#: factorisation's, so its sign is the flag, unless |q| < SIGN_FLOOR of the scale (at μ = 10, BEM
+#: `default`, the softest eigenvalue is down to 2e-9 of the largest diagonal entry, and q matches
+#: it to 1e-6 at the median). Otherwise a double-precision factorisation decides.
+#: test_surface_solver.py::test_stability_below_single_precision_is_decided_in_double and
+#: ::test_stability_where_inverse_iteration_has_not_settled_is_decided_in_double.
+SOFTEST_ITERATIONS, SURE_SIGN, SETTLED, SIGN_FLOOR = 4, 2e-6, 1e-3, 1e-12
 #: Newton's line search: a step is accepted once the merit (relative residual + constraint)
 #: falls by ARMIJO × its fraction (the usual sufficient decrease), else halved, at most
 #: MAX_HALVINGS times (2^-20 of a step is below any useful move). Not pinned by a test.
@@ -185,6 +198,7 @@ class EdgeBlockCholesky:
         self._m = solve_triangular(self._l, jac[bulk, edge], lower=True, check_finite=False)
         self._coupled = self._m.T @ self._m
         self._schur = cho_factor(jac[edge, edge] - self._coupled, check_finite=False)
+        self.single = jac.dtype == np.float32
 
     def with_edge(self, jac_edge):
         """This factorisation with the edge block replaced by `jac_edge`."""
@@ -218,14 +232,17 @@ class Linearisation:
 
     Where ∂g/∂w is positive definite (a stable state) it is solved by Cholesky
     (`EdgeBlockCholesky`) and block elimination of the border (cheaper than LU); otherwise, or
-    if the border is degenerate, by LU of the whole matrix. `stable` records which, so stability
-    comes for free with every point. The factorisation is in single precision (faster than
-    double), in double where single fails: single precision cannot tell the sign of an
-    eigenvalue below about 1e-7 of the largest, and at μ = 50 (BEM `draft`) the crack tip's
-    softest mode is 1e-9 of the stiffest (test_surface_solver.py). Each solve is refined once
-    against the double-precision bordered matrix, so a solution carries about (κ·6e-8)²
-    relative error for the bordered system's condition number κ (a linearisation moved to a
-    nearby state, `moved_to`, is refined up to MOVED_REFINEMENTS times).
+    if the border is degenerate, by LU of the whole matrix. The factorisation is in single
+    precision (faster than double), in double where single fails. `stable` says whether ∂g/∂w
+    is positive definite: single precision cannot tell the sign of an eigenvalue below about
+    1e-7 of the largest (rounding ∂g/∂w to single precision moves its eigenvalues that far, and
+    at μ = 50, BEM `draft`, the crack tip's softest mode is 1e-9 of the stiffest), so where its
+    Cholesky factorisation succeeded the sign of the softest eigenvalue is found by inverse
+    iteration against the exact product (`_softest`), or where that is not clear by a
+    double-precision factorisation (test_surface_solver.py). Each solve is refined once against
+    the double-precision bordered matrix, so a solution carries about (κ·6e-8)² relative error
+    for the bordered system's condition number κ (a linearisation moved to a nearby state,
+    `moved_to`, is refined up to MOVED_REFINEMENTS times).
     """
 
     def __init__(self, surface, w, delta, row):
@@ -237,8 +254,8 @@ class Linearisation:
         block = edge_block(surface, w, delta)
         self._cho = _cholesky_or_none(jac, block)
         if self._cho is None:
-            self._cho = _cholesky_or_none(surface.tangent_matrix(slope, np.float64), block)
-        self.stable = self._cho is not None
+            self._cho = _cholesky_or_none(self._double(), block)
+        self._stable = False if self._cho is None else None if self._cho.single else True
         if self._cho is not None and self._eliminate(border):
             return
         matrix = np.empty((n + 1, n + 1), dtype=np.float32, order="F")  # LU in place
@@ -270,7 +287,39 @@ class Linearisation:
         self.gradients, border = gradients, row @ gradients
         self._g_delta, self._border_row = g_delta, border
         self._jac_product = lambda x: surface.tangent_product(slope, x)
+        self._double = lambda: surface.tangent_matrix(slope, np.float64)
         return border
+
+    @property
+    def stable(self):
+        """Whether ∂g/∂w is positive definite (a stable state), decided on first use: by the
+        factorisation that succeeded if it is in double precision; else from the softest
+        eigenvalue found by inverse iteration (`_softest`), where that is sure; else by a
+        double-precision factorisation."""
+        if self._stable is None:
+            quotient, settled, scale = self._softest()
+            if quotient >= SURE_SIGN * scale:
+                self._stable = True
+            elif settled and abs(quotient) >= SIGN_FLOOR * scale:
+                self._stable = quotient > 0.0
+            else:
+                self._stable = _cholesky_or_none(self._double(), self._cho.block) is not None
+        return self._stable
+
+    def _softest(self):
+        """(q, settled, scale): the Rayleigh quotient q of the exact ∂g/∂w after
+        SOFTEST_ITERATIONS inverse iterations with the Cholesky factorisation from a fixed random
+        vector v, whether the last iteration changed it by at most SETTLED of itself, and the
+        matrix's scale |∂g/∂w v|/|v|."""
+        v = np.random.default_rng(0).standard_normal(self.n)
+        scale = np.linalg.norm(self._jac_product(v)) / np.linalg.norm(v)
+        quotients = []
+        for _ in range(SOFTEST_ITERATIONS):
+            v = self._cho.solve(v)
+            v /= np.linalg.norm(v)
+            quotients.append(float(v @ self._jac_product(v)))
+        before, last = quotients[-2:]
+        return last, abs(last - before) <= SETTLED * abs(last), scale
 
     def moved_to(self, surface, w, delta, row):
         """This linearisation as the approximate inverse of the bordered matrix at a nearby state
@@ -285,6 +334,7 @@ class Linearisation:
         moved.refinements, moved.moved = MOVED_REFINEMENTS, True
         if self._cho is None:
             return moved
+        moved._stable = None
         first, last = self._cho.block
         quarter = (last - first) // 4
         lowest = first + quarter if first > 0 else 0
