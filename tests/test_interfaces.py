@@ -24,6 +24,11 @@ def test_both_solids_offer_the_elastic_surface_interface(method):
     assert isinstance(elastic, ElasticSurface)
     n = elastic.r_nodes.size
     assert elastic.compliance.shape == (n, n) and elastic.interp.shape == (elastic.r_quad.size, n)
+    # the stiffness is the compliance's inverse (the BEM builds both from B, as M B⁻¹ M and
+    # M⁻¹ B M⁻¹): to the rounding of a product of condition number κ, κ·1e-15
+    product = elastic.surface_stiffness @ elastic.compliance
+    kappa = np.linalg.cond(elastic.compliance)
+    assert np.max(np.abs(product - np.eye(n))) <= 1e-15 * kappa
 
 
 @pytest.mark.parametrize("mu, method, kind", [(2.0, "fem", FixedGrid), (2.0, "bem", FixedGrid),
@@ -63,7 +68,7 @@ def test_the_uniform_boundary_integral_takes_a_layer_the_edge_grids_refuse_it():
 
 
 def test_spd_inverse_inverts_and_refuses_an_indefinite_matrix():
-    """The stiffness is the compliance's inverse by `spd_inverse` (both solids): against
+    """The FE's surface stiffness is its compliance's inverse by `spd_inverse`: against
     numpy's inverse on a matrix of condition 1e6, and a LinAlgError, not a wrong answer, for an
     eigenvalue −1e-6."""
     rng = np.random.default_rng(4)

@@ -13,7 +13,7 @@ from scipy.sparse import csr_matrix
 from ..closed_forms.lj import scaled_potential as potential
 from ..closed_forms.lj import scaled_traction as traction
 from ..closed_forms.lj import scaled_traction_slope as traction_slope
-from ..solids.operator import ElasticSurface, spd_inverse
+from ..solids.operator import ElasticSurface
 
 #: A Newton step never lets a gap fall below this fraction of its current value. Not pinned by a
 #: test.
@@ -144,7 +144,7 @@ class LJSurface(SurfaceShape):
         self.interp_t = elastic.interp.T.tocsr()
         self.weights = elastic.weights
         self.profile = derjaguin_profile(elastic.r_quad, radius_ratio)
-        self.stiffness = spd_inverse(elastic.compliance)
+        self.stiffness = elastic.surface_stiffness
         self._stiffness32 = self.stiffness.astype(np.float32)
         self._spring_entries, self._spring_map = _spring_pattern(self.interp)
 

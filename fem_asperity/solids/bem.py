@@ -7,9 +7,11 @@ Galerkin form on a radial grid of linear elements: traction p and deflection w a
 piecewise linear with nodal values; with M = ∫ φᵢ φⱼ r dr and B = ∫ φᵢ(r) u[φⱼ](r) r dr (u the
 Boussinesq deflection of a hat traction, `boussinesq.galerkin_matrix`), a load vector
 f = ∫ p φᵢ r dr gives p = M⁻¹ f and M w = B p, so the compliance is C = M⁻¹ B M⁻¹, symmetric and
-positive definite like the FE's. The half-space is infinite: there is no truncation of the
-solid, only of the traction beyond the last node.
+positive definite like the FE's, and the surface stiffness C⁻¹ = M B⁻¹ M. The half-space is
+infinite: there is no truncation of the solid, only of the traction beyond the last node.
 """
+
+from functools import cached_property
 
 import numpy as np
 from scipy.linalg import cho_solve_banded, cholesky_banded
@@ -18,6 +20,7 @@ from scipy.sparse import csr_matrix
 from ..plumbing.errors import InputError
 from .boussinesq import galerkin_matrix, quadrature
 from .layered import layer_correction
+from .operator import spd_inverse
 
 
 def radial_grid(*, h, r_fine, r_max, growth=0.1):
@@ -40,7 +43,8 @@ class BoussinesqSurface:
 
     The `operator.ElasticSurface` interface: r_nodes, r_quad (Gauss points,
     `boussinesq.quadrature`), weights (Gauss weight × r), interp (nodal values → values at
-    r_quad), compliance (dense C), dofs (unknowns: the surface nodes).
+    r_quad), compliance (dense C, built on first use), surface_stiffness (C⁻¹), dofs (unknowns:
+    the surface nodes).
     """
 
     def __init__(self, nodes, *, solid=None):
@@ -58,18 +62,25 @@ class BoussinesqSurface:
         values = np.concatenate([np.tile(1.0 - x, elements), np.tile(x, elements)])
         self.interp = csr_matrix((values, (rows, cols)), shape=(self.r_quad.size, nodes.size))
         weighted = self.interp.T.multiply(self.weights).tocsr()
-        mass = weighted @ self.interp  # tridiagonal: banded Cholesky solves
-        banded = np.zeros((2, nodes.size))
-        banded[0, 1:], banded[1] = mass.diagonal(1), mass.diagonal()
-        factor = cholesky_banded(banded), False
+        self._mass = weighted @ self.interp  # tridiagonal
         coupling = galerkin_matrix(nodes)
         if solid is not None and solid.layer_thickness is not None:
             coupling = (coupling / solid.layer_modulus_ratio
                         + layer_correction(nodes, solid))
-        half = cho_solve_banded(factor, 0.5 * (coupling + coupling.T))
-        self.compliance = cho_solve_banded(factor, half.T)
-        self.compliance = 0.5 * (self.compliance + self.compliance.T)
+        self._coupling = 0.5 * (coupling + coupling.T)
+        stiffness = np.asarray(self._mass @ (self._mass @ spd_inverse(self._coupling)).T)
+        self.surface_stiffness = 0.5 * (stiffness + stiffness.T)
         self.dofs = nodes.size
+
+    @cached_property
+    def compliance(self):
+        """C = M⁻¹ B M⁻¹ (banded Cholesky solves with the tridiagonal M)."""
+        banded = np.zeros((2, self.r_nodes.size))
+        banded[0, 1:], banded[1] = self._mass.diagonal(1), self._mass.diagonal()
+        factor = cholesky_banded(banded), False
+        half = cho_solve_banded(factor, self._coupling)
+        compliance = cho_solve_banded(factor, half.T)
+        return 0.5 * (compliance + compliance.T)
 
     def nodal_load(self, pressure_at_quad):
         """Consistent surface load ∫ p φᵢ r dr of a pressure given at the quadrature points."""

@@ -15,6 +15,7 @@ truncated at a finite size; what lies outside is restored by the far field of th
 """
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from scipy.sparse import coo_matrix
@@ -141,6 +142,7 @@ class HalfSpace:
       interp: sparse (n_quad × n_nodes) map from surface values w to w at the quadrature points.
       compliance: dense C (n_nodes × n_nodes): w = −C·load for the normal nodal loads
         load = interpᵀ(weights·p) with p > 0 pressing into the solid (E* = 1 units).
+      surface_stiffness: C⁻¹, built on first use.
       dofs: number of displacement unknowns (after the boundary conditions).
     """
 
@@ -172,6 +174,11 @@ class HalfSpace:
         # The truncated solid is too stiff by the compliance of what lies outside it: near the
         # axis (r ≪ size) that is a uniform sink of the whole surface, per unit load sum.
         self.compliance -= self._far_field[self.surface_dofs[0]]
+
+    @cached_property
+    def surface_stiffness(self):
+        """C⁻¹: the surface nodal loads per unit upward displacement, dense."""
+        return spd_inverse(self.compliance)
 
     def _outside_response(self):
         """Displacement field (all DOFs) per unit load sum ∫p r dr at the axis, of the solid held

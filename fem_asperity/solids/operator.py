@@ -18,8 +18,9 @@ class ElasticSurface(Protocol):
     r_nodes: radii of the surface unknowns (increasing from 0). r_quad, weights: the surface
     quadrature points and their weights with the factor r included. interp: nodal values → values
     at r_quad (sparse, n_quad × n_nodes). compliance: dense C, the upward nodal displacement per
-    unit consistent nodal load, symmetric positive definite. dofs: unknowns of the solid (the
-    surface nodes for a boundary integral, every displacement DOF for the FE).
+    unit consistent nodal load, symmetric positive definite; surface_stiffness: its inverse.
+    dofs: unknowns of the solid (the surface nodes for a boundary integral, every displacement
+    DOF for the FE).
     """
 
     r_nodes: np.ndarray
@@ -27,6 +28,7 @@ class ElasticSurface(Protocol):
     weights: np.ndarray
     interp: csr_matrix
     compliance: np.ndarray
+    surface_stiffness: np.ndarray
     dofs: int
 
     def nodal_load(self, pressure_at_quad: np.ndarray) -> np.ndarray:
