@@ -5,12 +5,8 @@ import pytest
 from scipy.linalg import LinAlgError
 
 from fem_asperity.closed_forms.lj import scaled_traction_slope
-from fem_asperity.path.continuation import (
-    SURE_SIGN,
-    EdgeBlockCholesky,
-    Linearisation,
-    edge_block,
-)
+from fem_asperity.path import continuation
+from fem_asperity.path.continuation import EdgeBlockCholesky, Linearisation, edge_block
 from fem_asperity.path.elimination import relax_edge
 from fem_asperity.path.surface import LJSurface
 from fem_asperity.solver.presets import discretisation
@@ -161,16 +157,21 @@ def test_a_linearisation_declines_to_move_where_the_tip_left_its_edge_block(trac
 
 
 class _SpringlessSurface:
-    """The few surface operators `Linearisation` asks for, with a given tangent matrix."""
+    """The few surface operators `Linearisation` asks for, with a given tangent matrix; its
+    single-precision copy shifted by `shift` times the identity (a factorisation that succeeds
+    on any machine, as rounding may make it succeed)."""
 
-    def __init__(self, jac):
+    def __init__(self, jac, shift=0.0):
         n = jac.shape[0]
         self.jac, self.r_nodes, self.load_factor = jac, np.linspace(0.0, 1.0, n), 1.0
+        self.shift = shift
 
     def sensitivities(self, w, delta):
         return np.full(w.size, 1e-3), 1.0, None
 
     def tangent_matrix(self, slope, precision=np.float32):
+        if precision == np.float32:
+            return (self.jac + self.shift * np.eye(self.jac.shape[0])).astype(precision)
         return self.jac.astype(precision)
 
     def tangent_product(self, slope, x):
@@ -180,35 +181,53 @@ class _SpringlessSurface:
         return 0.5
 
 
-@pytest.mark.parametrize("softest, stable", [((1e-10,), True), ((-1e-10,), False),
-                                             ((-1e-10, 1e-10), False), ((1e-10, 1.2e-10), True)])
-def test_stability_below_single_precision_is_decided_in_double(softest, stable):
-    """A tangent whose softest eigenvalue is ±1e-10 of the stiffest (at μ = 50 the crack tip's
-    is 1e-9), or that has two so close that inverse iteration cannot single one out: rounded
-    to single precision its sign is a matter of luck (with OpenBLAS 0.3.31 on an AVX-512
-    machine both signs factorise, on the last one neither did), the flag is still right."""
-    rng = np.random.default_rng(3)
-    q, _ = np.linalg.qr(rng.standard_normal((80, 80)))
-    spectrum = np.concatenate([softest, np.logspace(-3, 0, 80 - len(softest))])
+def _rotated(spectrum, seed):
+    """A symmetric matrix with the given eigenvalues and random eigenvectors."""
+    q, _ = np.linalg.qr(np.random.default_rng(seed).standard_normal((spectrum.size,) * 2))
     jac = (q * spectrum) @ q.T
-    jac = 0.5 * (jac + jac.T)
-    surface = _SpringlessSurface(jac)
+    return 0.5 * (jac + jac.T)
+
+
+@pytest.mark.parametrize("softest, stable, double", [
+    ((1e-10,), True, True), ((-1e-10,), False, True),
+    ((-1e-10, 3e-8), False, True), ((-1e-11, 1e-6), False, True), ((1e-3,), True, False)])
+def test_stability_below_single_precision_is_decided_in_double(softest, stable, double,
+                                                               monkeypatch):
+    """Tangents whose softest eigenvalue is ±1e-10 of the stiffest (at μ = 50 the crack tip's
+    is 1e-9), also with a second soft mode (where the Rayleigh quotient after inverse iteration
+    came out positive for a negative eigenvalue), or 1e-3. Single precision cannot tell the
+    sign below ~1e-7 (here its copy is shifted by 1e-6 so that it always factorises, as
+    rounding did on this machine, OpenBLAS 0.3.31 with AVX-512, for −1e-10); the flag is
+    right, from a double-precision factorisation except where the softest eigenvalue is
+    clearly positive."""
+    doubles = []
+
+    def counted(jac, block):
+        doubles.append(jac.dtype == np.float64)
+        return cholesky_or_none(jac, block)
+
+    cholesky_or_none = continuation._cholesky_or_none
+    monkeypatch.setattr(continuation, "_cholesky_or_none", counted)
+    spectrum = np.concatenate([softest, np.logspace(-3, 0, 80 - len(softest))])
+    surface = _SpringlessSurface(_rotated(spectrum, seed=3), shift=1e-6)
     linear = Linearisation(surface, np.zeros(80), 0.0, np.array([0.0, 1.0, 0.0]))
+    assert not any(doubles)  # the shifted single-precision factorisation succeeded
     assert linear.stable is stable
+    assert any(doubles) is double
 
 
-def test_stability_where_inverse_iteration_has_not_settled_is_decided_in_double():
-    """Softest eigenvalues 5e-7 and 1e-6 of the largest (single precision factorises them
-    surely): too small for the quotient alone to be sure, and four inverse iterations do not
-    settle it, so a double-precision factorisation decides (the flag, stable)."""
-    rng = np.random.default_rng(5)
-    q, _ = np.linalg.qr(rng.standard_normal((80, 80)))
-    jac = (q * np.concatenate([[5e-7, 1e-6], np.logspace(-2, 0, 78)])) @ q.T
-    linear = Linearisation(_SpringlessSurface(0.5 * (jac + jac.T)), np.zeros(80), 0.0,
-                           np.array([0.0, 1.0, 0.0]))
-    quotient, settled, scale = linear._softest()
-    assert quotient < SURE_SIGN * scale and not settled
-    assert linear.stable
+@pytest.mark.filterwarnings("ignore::scipy.linalg.LinAlgWarning")  # the LU is singular here
+def test_a_degenerate_border_keeps_the_stability_of_its_cholesky_factorisation():
+    """A border that the Cholesky elimination cannot take (∂g/∂δ = −∂g/∂w e₀ with the
+    constraint on x̄o = δ − w₀: its Schur complement is zero; a diagonal of powers of 4 keeps
+    single precision exact) goes to LU; the flag is still the positive definite tangent's,
+    stable, decided before the Cholesky factorisation is dropped."""
+    jac = np.diag(4.0 ** np.resize(np.arange(-3, 3), 40))
+    surface = _SpringlessSurface(jac)
+    surface.sensitivities = lambda w, delta: (-jac[:, 0], 1.0, None)
+    linear = Linearisation(surface, np.zeros(40), 0.0, np.array([1.0, 0.0, 0.0]))
+    assert linear._cho is None  # the premise: LU
+    assert linear.stable is True
 
 
 def test_each_point_changing_stability_has_its_own_flag():

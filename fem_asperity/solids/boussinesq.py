@@ -41,8 +41,9 @@ _CHUNK = 2_000_000
 #: (numpy calls). Not pinned by a test.
 _LEAF = 32
 #: Chebyshev points per variable of a well-separated block of `galerkin_matrix`: the kernel is
-#: analytic within the Bernstein ellipse of parameter ρ ≥ 3 + √8 about each span (the other
-#: span, where it is singular, lies at least the larger span's extent away), so the
+#: analytic within the Bernstein ellipse of parameter ρ ≥ 3 + √8 about each span (it is singular
+#: only on the circle |s| = r, whose nearest point, on the other span, lies at least the larger
+#: span's extent away), so the
 #: interpolation error falls like ρ^(−20) ≈ 5e-16 (times Lebesgue constants ~10);
 #: test_bem.py::test_galerkin_matrix_is_the_tested_deflection_tested_against_the_hat_functions.
 _CHEBYSHEV = 20
@@ -230,8 +231,8 @@ def _chebyshev(lo, hi, targets):
 def _partition(a, b, rows, cols):
     """The upper triangle (cols not before rows) of the element pairs, as (rows, cols,
     separated) blocks of element slices: `separated` blocks lie at least their larger extent
-    and _NEAR[1] of their longest element apart (a smooth kernel there: `_interpolated`);
-    the others are at most _LEAF elements each way (the kernel in full)."""
+    and _NEAR[1] of their longest element apart (an analytic kernel there, interpolated by
+    `galerkin_matrix`); the others are at most _LEAF elements each way (the kernel in full)."""
     m, n = rows.stop - rows.start, cols.stop - cols.start
     if rows == cols:
         if m <= _LEAF:

@@ -45,6 +45,8 @@ def spd_inverse(matrix):
     factor, info = lapack.dpotrf(matrix, lower=False, clean=False)
     if info == 0:
         inverse, info = lapack.dpotri(factor, lower=False, overwrite_c=True)
-    if info != 0:
+    if info > 0:
         raise LinAlgError(f"the matrix is not positive definite (LAPACK info {info})")
+    if info < 0:
+        raise ValueError(f"LAPACK rejected argument {-info} of potrf/potri")
     return np.triu(inverse) + np.triu(inverse, 1).T
