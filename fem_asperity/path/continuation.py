@@ -41,15 +41,18 @@ MOVED_REFINEMENTS, ACCEPT = 3, 1e-2
 #: of its block factorises afresh. Not pinned by a test.
 EDGE_SHARE = 0.125
 #: Where a single-precision Cholesky factorisation of ∂g/∂w succeeds (it cannot tell the sign of
-#: an eigenvalue below ~1e-7 of the largest: rounding moves them that far), the softest
-#: eigenvalue is estimated by the Rayleigh quotient q (exact product) after SOFTEST_ITERATIONS
-#: inverse iterations with it. q ≥ SURE_SIGN of ‖∂g/∂w‖∞: stable (a negative eigenvalue of
-#: ∂g/∂w is one below ~1e-7 ‖∂g/∂w‖ of the factorised matrix, which the iterations would have
-#: found, amplified ≥ 20-fold each; FE `default` at μ = 5 and BEM `default` at μ = 10 decide
-#: about 19 points in 20 so). Otherwise a double-precision factorisation decides: q alone
-#: cannot, its error grows as the second softest eigenvalue nears the first.
-#: test_surface_solver.py::test_stability_below_single_precision_is_decided_in_double.
-SOFTEST_ITERATIONS, SURE_SIGN = 3, 2e-6
+#: an eigenvalue below ~1e-7 ‖∂g/∂w‖: rounding and the factorisation's backward error move the
+#: eigenvalues about 2 × 6e-8 ‖∂g/∂w‖∞), the softest eigenvalue is estimated by the Rayleigh
+#: quotient q (exact product, in double precision) after SOFTEST_ITERATIONS inverse iterations
+#: with it. q ≤ −ROUNDING ‖∂g/∂w‖∞ (double precision's rounding of q): unstable, for the softest
+#: eigenvalue is at most q. q ≥ SURE_SIGN ‖∂g/∂w‖∞, ten times single precision's rounding:
+#: stable (a negative eigenvalue of ∂g/∂w is one within ~1e-7 of zero of the factorised matrix,
+#: which the iterations amplify at least tenfold each, so q would be within a few 1e-7).
+#: Between, a double-precision factorisation decides (q's error grows as a second soft mode
+#: nears the first). FE `default` at μ = 5: q is 4e-8 to 1e-6 of ‖∂g/∂w‖∞ at half the points,
+#: so near single precision's limit. test_surface_solver.py::
+#: test_stability_below_single_precision_is_decided_in_double.
+SOFTEST_ITERATIONS, SURE_SIGN, ROUNDING = 3, 6e-7, 1e-14
 #: Newton's line search: a step is accepted once the merit (relative residual + constraint)
 #: falls by ARMIJO × its fraction (the usual sufficient decrease), else halved, at most
 #: MAX_HALVINGS times (2^-20 of a step is below any useful move). Not pinned by a test.
@@ -287,19 +290,24 @@ class Linearisation:
         self._g_delta, self._border_row = g_delta, border
         self._jac_product = lambda x: surface.tangent_product(slope, x)
         self._double = lambda: surface.tangent_matrix(slope, np.float64)
+        self._norm = lambda: surface.tangent_norm(slope)
         return border
 
     @property
     def stable(self):
         """Whether ∂g/∂w is positive definite (a stable state), decided on first use: by the
-        factorisation that succeeded if it is in double precision; else, where the softest
-        eigenvalue that inverse iteration finds is clearly positive (`_softest` ≥ SURE_SIGN of
-        ‖∂g/∂w‖∞), stable; else by a double-precision factorisation."""
+        factorisation that succeeded if it is in double precision; else by the Rayleigh
+        quotient q of the exact ∂g/∂w that inverse iteration finds (`_softest`), if it is
+        clearly negative (then so is the softest eigenvalue) or clearly positive (≥ SURE_SIGN
+        of a bound of ‖∂g/∂w‖∞, `tangent_norm`); else by a double-precision factorisation."""
         if self._stable is None:
-            jac = self._double()
-            norm = np.max(np.sum(np.abs(jac), axis=1))
-            self._stable = bool(self._softest() >= SURE_SIGN * norm
-                                or _cholesky_or_none(jac, self._cho.block) is not None)
+            quotient, norm = self._softest(), self._norm()
+            if quotient >= SURE_SIGN * norm:
+                self._stable = True
+            elif quotient <= -ROUNDING * norm:
+                self._stable = False
+            else:
+                self._stable = _cholesky_or_none(self._double(), self._cho.block) is not None
         return self._stable
 
     def _softest(self):

@@ -147,6 +147,7 @@ class LJSurface(SurfaceShape):
         self.stiffness = elastic.surface_stiffness
         self._stiffness32 = self.stiffness.astype(np.float32)
         self._spring_entries, self._spring_map = _spring_pattern(self.interp)
+        self._stiffness_row_sums = np.abs(self.stiffness).sum(axis=1)
 
     def gap(self, w, delta):
         """Gap at the quadrature points, in ε."""
@@ -183,6 +184,13 @@ class LJSurface(SurfaceShape):
         spring = (local.T @ local.multiply(slope[:, None])).toarray()
         return self._stiffness32[first:last, first:last] - (self.load_factor * spring).astype(
             np.float32)
+
+    def tangent_norm(self, slope):
+        """An upper bound of ‖∂g/∂w‖∞ (so of its spectral norm) for the spring `slope`: the
+        stiffness's absolute row sums plus the springs' (the hat functions are ≥ 0 and sum to
+        1)."""
+        return float(np.max(self._stiffness_row_sums
+                            + self.load_factor * (self.interp_t @ np.abs(slope))))
 
     def tangent_product(self, slope, x):
         """(∂g/∂w) x in double precision for the spring `slope` (from `sensitivities`)."""
