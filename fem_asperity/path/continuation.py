@@ -47,7 +47,8 @@ EDGE_SHARE = 0.125
 #: with it. q ≤ −ROUNDING ‖∂g/∂w‖∞ (double precision's rounding of q): unstable, for the softest
 #: eigenvalue is at most q. q ≥ SURE_SIGN ‖∂g/∂w‖∞, ten times single precision's rounding:
 #: stable (a negative eigenvalue of ∂g/∂w is one within ~1e-7 of zero of the factorised matrix,
-#: which the iterations amplify at least tenfold each, so q would be within a few 1e-7).
+#: whose mode each iteration amplifies at least fivefold over every mode above SURE_SIGN, so q
+#: would be a few 1e-7 at most).
 #: Between, a double-precision factorisation decides (q's error grows as a second soft mode
 #: nears the first). FE `default` at μ = 5: q is 4e-8 to 1e-6 of ‖∂g/∂w‖∞ at half the points,
 #: so near single precision's limit. test_surface_solver.py::
