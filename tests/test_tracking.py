@@ -99,9 +99,10 @@ def test_tracked_result_says_how_it_was_computed(mu5):
 def test_grids_ahead_of_the_edges_build_fewer_grids_for_the_same_curve(monkeypatch):
     """Grids centred ahead of the moving edges (AHEAD of a band) against centred ones, BEM
     `draft` at μ = 8: fewer grids (the edges cross 0.9 of a band per grid instead of 0.5), and
-    P̄max, P̄off and the jumps differ by no more than the curve's own error estimate. P̄off
-    moved by 1.3e-8, more than the finer partner's difference alone (4e-9: its grids are
-    placed alike): the force estimates add the curve's `regrid_change` for that."""
+    P̄max, P̄off, ā_c and the jumps differ by no more than the curve's own error estimate.
+    P̄off moved by 1.3e-8, more than the finer partner's difference alone (4e-9: its grids are
+    placed alike): the force estimates add the curve's `regrid_change` for that, and the
+    estimate of ā_c its `regrid_radius_change`."""
     from fem_asperity.path import grids
 
     ahead = solve_curve(8.0, method="bem", accuracy="draft")
@@ -109,8 +110,8 @@ def test_grids_ahead_of_the_edges_build_fewer_grids_for_the_same_curve(monkeypat
     centred = solve_discretised(8.0, discretisation(8.0, "draft", method="bem"))
     count = [int(r.message.split(" grids followed")[0].split("; ")[-1]) for r in (ahead, centred)]
     assert count[0] < 0.8 * count[1]
-    assert ahead.regrid_change > 0.0
-    for key in ("p_max", "p_off", "delta_jump_in", "delta_jump_out"):
+    assert ahead.regrid_change > 0.0 and ahead.regrid_radius_change > 0.0
+    for key in ("p_max", "p_off", "a_c", "delta_jump_in", "delta_jump_out"):
         difference = abs(ahead.events.records()[key] - centred.events.records()[key])
         assert difference <= ahead.error_estimate[key], key
 

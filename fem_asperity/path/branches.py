@@ -69,7 +69,7 @@ def follow_branch(grids, surface, w, delta, heading, settings, until, on_point):
         change = abs(surface.force(w, delta) - before["p"])
         if change > REGRID_JUMP:
             return merged, (delta, before), None, surface, (surface, w)
-        grids.record_move(change)
+        grids.record_move(change, abs(surface.contact(w, delta)[1] - before["a_c"]))
 
 
 def _done_or_off_grid(until, grids, surface, tr):

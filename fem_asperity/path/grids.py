@@ -81,8 +81,8 @@ class EdgeGrids:
 
     h, band, h_inside, growth: as `edge_grid`; contact_h, contact_r: spacing and extent of the
     uniform pre-contact grid; r_max: the traction radius. Counters: `regrids` (grids built),
-    `largest_nodes`, `largest_change` (the largest |ΔP̄| of a state moved to a new grid while
-    on a branch: a measure of the discretisation error).
+    `largest_nodes`, `largest_change` and `largest_radius_change` (the largest |ΔP̄| and |Δā_c|
+    of a state moved to a new grid while on a branch: a measure of the discretisation error).
     """
 
     def __init__(self, mu, *, h, band, h_inside, contact_h, contact_r, r_max, growth=0.1,
@@ -92,7 +92,8 @@ class EdgeGrids:
         self._built_for = weakref.WeakKeyDictionary()  # surface → (ā_c, tip) it was built for
         self.start = self._surface(radial_grid(h=contact_h, r_fine=contact_r, r_max=r_max,
                                                growth=growth), (0.0, 0.0))
-        self.regrids, self.largest_change, self.largest_nodes = 0, 0.0, self.start.r_nodes.size
+        self.regrids, self.largest_nodes = 0, self.start.r_nodes.size
+        self.largest_change = self.largest_radius_change = 0.0
 
     def _surface(self, nodes, edges):
         surface = LJSurface(BoussinesqSurface(nodes), self.mu, radius_ratio=self.radius_ratio)
@@ -190,15 +191,17 @@ class EdgeGrids:
         """Unknowns of the largest grid (the surface nodes: a boundary integral)."""
         return self.largest_nodes
 
-    def record_move(self, change):
-        """Keep the largest |ΔP̄| of a state moved to a new grid while on a branch."""
+    def record_move(self, change, radius_change):
+        """Keep the largest |ΔP̄| and |Δā_c| of a state moved to a new grid while on a branch."""
         self.largest_change = max(self.largest_change, change)
+        self.largest_radius_change = max(self.largest_radius_change, radius_change)
 
     def summary(self):
         """How many grids followed the edge, their largest size, the largest move's |ΔP̄|."""
         return (f"; {self.regrids} grids followed the contact edge (at most "
                 f"{self.largest_nodes} nodes), moving a state to a new grid changed P̄ by at "
-                f"most {self.largest_change:.1e}")
+                f"most {self.largest_change:.1e} and ā_c by at most "
+                f"{self.largest_radius_change:.1e}")
 
     def _moved(self, surface, w, delta):
         """(surface, w) of the state (w, δ̄o) moved to the grid of its edges (the pre-contact
@@ -244,7 +247,7 @@ class FixedGrid:
             raise ContinuationError(f"no stable state found downhill at δ = {delta:.6g}")
         return surface, landed.w, landed.iterations
 
-    def record_move(self, change):
+    def record_move(self, change, radius_change):
         """Never called: a state never leaves a fixed grid."""
 
     def summary(self):
@@ -260,10 +263,11 @@ class Grids(Protocol):
     start: the `LJSurface` of the first state (far from contact). fits(surface, w, δ̄o): the
     surface resolves the state as well as one built for it. admits(...): it still resolves it
     (a continuation step beyond is retried shorter). land(surface, w, δ̄o, tol=...): (surface,
-    w, iterations) of the stable state downhill, on a surface that fits it. record_move(ΔP̄):
-    note the force change of a state moved to a new grid. transplant(nodes, w, δ̄o): (surface,
-    w) of a state given on other radial nodes, moved here. summary(): a clause for the curve's
-    message. dofs, largest_nodes: the cost of the largest solid used.
+    w, iterations) of the stable state downhill, on a surface that fits it.
+    record_move(ΔP̄, Δā_c): note the force and contact-radius changes of a state moved to a new
+    grid. transplant(nodes, w, δ̄o): (surface, w) of a state given on other radial nodes, moved
+    here. summary(): a clause for the curve's message. dofs, largest_nodes: the cost of the
+    largest solid used.
     """
 
     start: LJSurface
@@ -277,7 +281,7 @@ class Grids(Protocol):
     def land(self, surface: LJSurface, w: np.ndarray, delta: float, *,
              tol: float) -> tuple[LJSurface, np.ndarray, int]: ...
 
-    def record_move(self, change: float) -> None: ...
+    def record_move(self, change: float, radius_change: float) -> None: ...
 
     def transplant(self, nodes: np.ndarray, w: np.ndarray,
                    delta: float) -> tuple[LJSurface, np.ndarray]: ...

@@ -69,6 +69,7 @@ class CurveResult:
     regrid_change: on grids that follow the contact edge, the largest |ΔP̄| of a state moved to
         a new grid while on a branch: how much where the grids lie moves the forces (the error
         estimate of the forces includes it); None on one grid or mesh.
+    regrid_radius_change: the same for ā_c (the estimate of ā_c includes it).
     """
 
     mu: float
@@ -94,6 +95,7 @@ class CurveResult:
     spring_constant: float | None = None
     z_jumps: dict | None = None
     regrid_change: float | None = None
+    regrid_radius_change: float | None = None
     model: Model | None = field(default=None, repr=False, compare=False)
 
     @property
@@ -143,6 +145,7 @@ class CurveResult:
             "dofs": self.dofs,
             "surface_nodes": self.surface_nodes,
             "regrid_change": self.regrid_change,
+            "regrid_radius_change": self.regrid_radius_change,
             "points": self.points,
             "newton_iterations": self.newton_iterations,
             "wall_s": self.wall_s,
