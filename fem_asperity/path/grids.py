@@ -197,7 +197,8 @@ class EdgeGrids:
         self.largest_radius_change = max(self.largest_radius_change, radius_change)
 
     def summary(self):
-        """How many grids followed the edge, their largest size, the largest move's |ΔP̄|."""
+        """How many grids followed the edge, their largest size, the largest move's |ΔP̄| and
+        |Δā_c|."""
         return (f"; {self.regrids} grids followed the contact edge (at most "
                 f"{self.largest_nodes} nodes), moving a state to a new grid changed P̄ by at "
                 f"most {self.largest_change:.1e} and ā_c by at most "

@@ -7,6 +7,8 @@ N the interpolation to the surface quadrature points, W their weights (r include
 h = δ + r²/2 − N w the Derjaguin gap (or the exact sphere profile, see `derjaguin_profile`).
 """
 
+from functools import cached_property
+
 import numpy as np
 from scipy.sparse import csr_matrix
 
@@ -147,7 +149,6 @@ class LJSurface(SurfaceShape):
         self.stiffness = elastic.surface_stiffness
         self._stiffness32 = self.stiffness.astype(np.float32)
         self._spring_entries, self._spring_map = _spring_pattern(self.interp)
-        self._stiffness_row_sums = np.abs(self.stiffness).sum(axis=1)
 
     def gap(self, w, delta):
         """Gap at the quadrature points, in ε."""
@@ -191,6 +192,12 @@ class LJSurface(SurfaceShape):
         1)."""
         return float(np.max(self._stiffness_row_sums
                             + self.load_factor * (self.interp_t @ np.abs(slope))))
+
+    @cached_property
+    def _stiffness_row_sums(self):
+        """Absolute row sums of the stiffness (built when a stability flag first needs them,
+        not with every grid)."""
+        return np.abs(self.stiffness).sum(axis=1)
 
     def tangent_product(self, slope, x):
         """(∂g/∂w) x in double precision for the spring `slope` (from `sensitivities`)."""

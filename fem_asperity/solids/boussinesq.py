@@ -43,8 +43,8 @@ _LEAF = 32
 #: Chebyshev points per variable of a well-separated block of `galerkin_matrix`: the kernel is
 #: analytic within the Bernstein ellipse of parameter ρ ≥ 3 + √8 about each span (it is singular
 #: only on the circle |s| = r, whose nearest point, on the other span, lies at least the larger
-#: span's extent away), so the
-#: interpolation error falls like ρ^(−20) ≈ 5e-16 (times Lebesgue constants ~10);
+#: span's extent away), so the interpolation error falls like ρ^(−20) ≈ 5e-16 (times Lebesgue
+#: constants ~10);
 #: test_bem.py::test_galerkin_matrix_is_the_tested_deflection_tested_against_the_hat_functions.
 _CHEBYSHEV = 20
 
@@ -238,10 +238,10 @@ def _partition(a, b, rows, cols):
         if m <= _LEAF:
             yield rows, cols, False
             return
-        half = slice(rows.start, rows.start + m // 2), slice(rows.start + m // 2, rows.stop)
-        yield from _partition(a, b, half[0], half[0])
-        yield from _partition(a, b, half[0], half[1])
-        yield from _partition(a, b, half[1], half[1])
+        first, second = _halves(rows)
+        yield from _partition(a, b, first, first)
+        yield from _partition(a, b, first, second)
+        yield from _partition(a, b, second, second)
         return
     gap = a[cols.start] - b[rows.stop - 1]
     extent = max(b[rows.stop - 1] - a[rows.start], b[cols.stop - 1] - a[cols.start])
@@ -251,11 +251,17 @@ def _partition(a, b, rows, cols):
     elif m <= _LEAF and n <= _LEAF:
         yield rows, cols, False
     elif m >= n:
-        yield from _partition(a, b, slice(rows.start, rows.start + m // 2), cols)
-        yield from _partition(a, b, slice(rows.start + m // 2, rows.stop), cols)
+        for half in _halves(rows):
+            yield from _partition(a, b, half, cols)
     else:
-        yield from _partition(a, b, rows, slice(cols.start, cols.start + n // 2))
-        yield from _partition(a, b, rows, slice(cols.start + n // 2, cols.stop))
+        for half in _halves(cols):
+            yield from _partition(a, b, rows, half)
+
+
+def _halves(span):
+    """The two halves of the slice `span`."""
+    middle = (span.start + span.stop) // 2
+    return slice(span.start, middle), slice(middle, span.stop)
 
 
 def galerkin_matrix(nodes):
