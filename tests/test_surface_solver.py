@@ -32,14 +32,19 @@ def test_tangent_from_the_spring_map_is_the_assembled_tangent(method):
     assert np.max(np.abs(jac - assembled)) <= 1e-6 * np.max(np.abs(assembled))
 
 
-def test_tangent_norm_bounds_the_row_sums_of_the_tangent(traced):
-    """`tangent_norm` (O(n)) is at least ‖∂g/∂w‖∞ at a state in contact, where springs of both
-    signs meet at the edge, and at most a tenth above it (measured: equal to 1e-12)."""
+def test_scaled_tangent_norm_bounds_the_row_sums_of_the_scaled_tangent(traced):
+    """`scaled_tangent_norm` is ‖D ∂g/∂w D‖∞ (D = diag(∂g/∂w)^(−1/2), from `tangent_diagonal`)
+    at a state in contact, where springs of both signs meet at the edge, though it never forms
+    ∂g/∂w."""
     surface = traced[0]
     w, delta = _contact_state(traced)
     slope = surface.sensitivities(w, delta)[2]
-    exact = np.max(np.abs(surface.tangent_matrix(slope, np.float64)).sum(axis=1))
-    assert exact <= surface.tangent_norm(slope) <= 1.1 * exact
+    jac = surface.tangent_matrix(slope, np.float64)
+    diagonal = surface.tangent_diagonal(slope)
+    assert np.allclose(diagonal, jac.diagonal(), rtol=1e-12, atol=0.0)
+    scale = np.sqrt(diagonal)
+    exact = np.max(np.abs(jac / np.outer(scale, scale)).sum(axis=1))
+    assert surface.scaled_tangent_norm(slope, scale) == pytest.approx(exact, rel=1e-12)
 
 
 def _contact_state(traced):
@@ -187,8 +192,11 @@ class _SpringlessSurface:
     def tangent_product(self, slope, x):
         return self.jac @ x
 
-    def tangent_norm(self, slope):
-        return float(np.max(np.abs(self.jac).sum(axis=1)))
+    def tangent_diagonal(self, slope):
+        return self.jac.diagonal().copy()
+
+    def scaled_tangent_norm(self, slope, scale):
+        return float(np.max(np.abs(self.jac / np.outer(scale, scale)).sum(axis=1)))
 
     def crack_tip(self, w, delta):
         return 0.5
@@ -214,20 +222,54 @@ def test_stability_below_single_precision_is_decided_in_double(softest, stable, 
     right. A double-precision factorisation decides the small positive eigenvalue; none is
     needed where inverse iteration finds a clearly negative or clearly positive one (`double`
     None: either, by how the two soft modes mix)."""
-    doubles = []
-
-    def counted(jac, block):
-        doubles.append(jac.dtype == np.float64)
-        return cholesky_or_none(jac, block)
-
-    cholesky_or_none = continuation._cholesky_or_none
-    monkeypatch.setattr(continuation, "_cholesky_or_none", counted)
+    doubles = _count_double_factorisations(monkeypatch)
     spectrum = np.concatenate([softest, np.logspace(-3, 0, 80 - len(softest))])
     surface = _SpringlessSurface(_rotated(spectrum, seed=3), shift=1e-6)
     linear = Linearisation(surface, np.zeros(80), 0.0, np.array([0.0, 1.0, 0.0]))
     assert not any(doubles)  # the shifted single-precision factorisation succeeded
     assert linear.stable is stable
     assert double is None or any(doubles) is double
+
+
+def _count_double_factorisations(monkeypatch):
+    """A list that gains, at each `Linearisation` factorisation attempt, whether it was in
+    double precision."""
+    doubles = []
+    cholesky_or_none = continuation._cholesky_or_none
+
+    def counted(jac, block):
+        doubles.append(jac.dtype == np.float64)
+        return cholesky_or_none(jac, block)
+
+    monkeypatch.setattr(continuation, "_cholesky_or_none", counted)
+    return doubles
+
+
+def test_the_stability_of_a_badly_scaled_tangent_is_judged_on_its_scaled_form(monkeypatch):
+    """A tangent S A S with A's eigenvalues in [1e-3, 1] and S's diagonal from 1 to 1e3 (the FE
+    surface stiffness grows with r): its softest eigenvalue is below 6e-7 of ‖∂g/∂w‖∞, where
+    single precision cannot tell its sign, but A's is not; the flag needs no double-precision
+    factorisation (with the unscaled quotient it did)."""
+    doubles = _count_double_factorisations(monkeypatch)
+    scale = np.logspace(0.0, 3.0, 80)
+    jac = _rotated(np.logspace(-3, 0, 80), seed=4) * np.outer(scale, scale)
+    norm = np.max(np.abs(jac).sum(axis=1))
+    assert np.linalg.eigvalsh(jac)[0] < continuation.SURE_SIGN * norm  # the premise
+    linear = Linearisation(_SpringlessSurface(jac), np.zeros(80), 0.0, np.array([0.0, 1.0, 0.0]))
+    assert linear.stable is True
+    assert not any(doubles)
+
+
+def test_a_tangent_with_a_diagonal_entry_below_zero_is_unstable(monkeypatch):
+    """A diagonal entry −1e-9 (no positive definite matrix has one ≤ 0) that single precision's
+    copy, shifted by 1e-6, factorises: unstable, without a double-precision factorisation."""
+    doubles = _count_double_factorisations(monkeypatch)
+    jac = np.diag(np.linspace(1.0, 2.0, 40))
+    jac[20, 20] = -1e-9
+    linear = Linearisation(_SpringlessSurface(jac, shift=1e-6), np.zeros(40), 0.0,
+                           np.array([0.0, 1.0, 0.0]))
+    assert linear.stable is False
+    assert not any(doubles)
 
 
 @pytest.mark.filterwarnings("ignore::scipy.linalg.LinAlgWarning")  # the LU is singular here

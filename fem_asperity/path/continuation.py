@@ -40,19 +40,24 @@ MOVED_REFINEMENTS, ACCEPT = 3, 1e-2
 #: matrix's eigenvalues move by up to 150). A moved linearisation whose tip left the middle half
 #: of its block factorises afresh. Not pinned by a test.
 EDGE_SHARE = 0.125
-#: Where a single-precision Cholesky factorisation of ∂g/∂w succeeds (it cannot tell the sign of
-#: an eigenvalue below ~1e-7 ‖∂g/∂w‖: rounding and the factorisation's backward error move the
-#: eigenvalues about 2 × 6e-8 ‖∂g/∂w‖∞), the softest eigenvalue is estimated by the Rayleigh
-#: quotient q (exact product, in double precision) after SOFTEST_ITERATIONS inverse iterations
-#: with it. q ≤ −ROUNDING ‖∂g/∂w‖∞ (double precision's rounding of q): unstable, for the softest
-#: eigenvalue is at most q. q ≥ SURE_SIGN ‖∂g/∂w‖∞, ten times single precision's rounding:
-#: stable (a negative eigenvalue of ∂g/∂w is one within ~1e-7 of zero of the factorised matrix,
-#: whose mode each iteration amplifies at least fivefold over every mode above SURE_SIGN, so q
-#: would be a few 1e-7 at most).
-#: Between, a double-precision factorisation decides (q's error grows as a second soft mode
-#: nears the first). FE `default` at μ = 5: q is 4e-8 to 1e-6 of ‖∂g/∂w‖∞ at half the points,
-#: so near single precision's limit. test_surface_solver.py::
-#: test_stability_below_single_precision_is_decided_in_double.
+#: Where a single-precision Cholesky factorisation of ∂g/∂w succeeds, the sign of its softest
+#: eigenvalue is judged on the Jacobi-scaled tangent A = D ∂g/∂w D (D = diag(∂g/∂w)^(−1/2), unit
+#: diagonal; by Sylvester's law of inertia it is positive definite where ∂g/∂w is). Single
+#: precision cannot tell the sign of an eigenvalue of A below ~1e-7 ‖A‖ (rounding moves each
+#: entry by 6e-8 of itself and the factorisation's backward error is bounded entrywise by
+#: multiples of 6e-8 √(J_ii J_jj), Higham's Thm 10.5, so both are that small on A's scale).
+#: So the softest eigenvalue of A is estimated by the Rayleigh quotient q (exact product, in
+#: double precision) after SOFTEST_ITERATIONS inverse iterations with the factorisation.
+#: q ≤ −ROUNDING ‖A‖∞ (double precision's rounding of q): unstable, for the softest eigenvalue
+#: is at most q. q ≥ SURE_SIGN ‖A‖∞, ten times single precision's rounding: stable (a negative
+#: eigenvalue of A is one within ~1e-7 of zero of the factorised matrix, whose mode each
+#: iteration amplifies at least fivefold over every mode above SURE_SIGN, so q would be a few
+#: 1e-7 at most). Between, a double-precision factorisation decides (q's error grows as a second
+#: soft mode nears the first). The scaling matters for the FE, whose surface stiffness grows
+#: with r: at `default`, μ = 5, q/‖∂g/∂w‖∞ unscaled was below SURE_SIGN at 121 of 227 flag
+#: reads, q/‖A‖∞ at 2. test_surface_solver.py::
+#: test_stability_below_single_precision_is_decided_in_double and
+#: test_the_stability_of_a_badly_scaled_tangent_is_judged_on_its_scaled_form.
 SOFTEST_ITERATIONS, SURE_SIGN, ROUNDING = 3, 6e-7, 1e-14
 #: Newton's line search: a step is accepted once the merit (relative residual + constraint)
 #: falls by ARMIJO × its fraction (the usual sufficient decrease), else halved, at most
@@ -236,14 +241,14 @@ class Linearisation:
     if the border is degenerate, by LU of the whole matrix. The factorisation is in single
     precision (faster than double), in double where single fails. `stable` says whether ∂g/∂w
     is positive definite: single precision cannot tell the sign of an eigenvalue below about
-    1e-7 of the largest (rounding ∂g/∂w to single precision moves its eigenvalues that far, and
-    at μ = 50, BEM `draft`, the crack tip's softest mode is 1e-9 of the stiffest), so where its
-    Cholesky factorisation succeeded a clearly positive softest eigenvalue is found by inverse
-    iteration against the exact product (`_softest`), or else a double-precision factorisation
-    decides (test_surface_solver.py). Each solve is refined once against
-    the double-precision bordered matrix, so a solution carries about (κ·6e-8)² relative error
-    for the bordered system's condition number κ (a linearisation moved to a nearby state,
-    `moved_to`, is refined up to MOVED_REFINEMENTS times).
+    1e-7 of the largest of the Jacobi-scaled ∂g/∂w (rounding to single precision moves its
+    eigenvalues that far, and at μ = 50, BEM `draft`, the crack tip's softest mode is 1e-9 of
+    the stiffest), so where its Cholesky factorisation succeeded a clearly positive softest
+    eigenvalue is found by inverse iteration against the exact product (`_softest`), or else a
+    double-precision factorisation decides (test_surface_solver.py). Each solve is refined once
+    against the double-precision bordered matrix, so a solution carries about (κ·6e-8)²
+    relative error for the bordered system's condition number κ (a linearisation moved to a
+    nearby state, `moved_to`, is refined up to MOVED_REFINEMENTS times).
     """
 
     def __init__(self, surface, w, delta, row):
@@ -291,18 +296,25 @@ class Linearisation:
         self._g_delta, self._border_row = g_delta, border
         self._jac_product = lambda x: surface.tangent_product(slope, x)
         self._double = lambda: surface.tangent_matrix(slope, np.float64)
-        self._norm = lambda: surface.tangent_norm(slope)
+        self._diagonal = lambda: surface.tangent_diagonal(slope)
+        self._scaled_norm = lambda scale: surface.scaled_tangent_norm(slope, scale)
         return border
 
     @property
     def stable(self):
         """Whether ∂g/∂w is positive definite (a stable state), decided on first use: by the
-        factorisation that succeeded if it is in double precision; else by the Rayleigh
-        quotient q of the exact ∂g/∂w that inverse iteration finds (`_softest`), if it is
-        clearly negative (then so is the softest eigenvalue) or clearly positive (≥ SURE_SIGN
-        of a bound of ‖∂g/∂w‖∞, `tangent_norm`); else by a double-precision factorisation."""
+        factorisation that succeeded if it is in double precision; else not where a diagonal
+        entry is ≤ 0; else by the Rayleigh quotient q of the Jacobi-scaled ∂g/∂w that inverse
+        iteration finds (`_softest`), if it is clearly negative (then so is the softest
+        eigenvalue) or clearly positive (≥ SURE_SIGN of a bound of the scaled matrix's norm,
+        `LJSurface.scaled_tangent_norm`); else by a double-precision factorisation."""
         if self._stable is None:
-            quotient, norm = self._softest(), self._norm()
+            diagonal = self._diagonal()
+            if np.min(diagonal) <= 0.0:
+                self._stable = False
+                return self._stable
+            scale = np.sqrt(diagonal)
+            quotient, norm = self._softest(scale), self._scaled_norm(scale)
             if quotient >= SURE_SIGN * norm:
                 self._stable = True
             elif quotient <= -ROUNDING * norm:
@@ -311,15 +323,16 @@ class Linearisation:
                 self._stable = _cholesky_or_none(self._double(), self._cho.block) is not None
         return self._stable
 
-    def _softest(self):
-        """The Rayleigh quotient of the exact ∂g/∂w after SOFTEST_ITERATIONS inverse iterations
-        with the Cholesky factorisation, from a fixed random vector: never below the softest
-        eigenvalue, near it where the factorised matrix is near ∂g/∂w."""
+    def _softest(self, scale):
+        """The Rayleigh quotient of the exact ∂g/∂w scaled to D ∂g/∂w D, D = diag(1/`scale`),
+        after SOFTEST_ITERATIONS inverse iterations with the Cholesky factorisation, from a
+        fixed random vector: never below the scaled matrix's softest eigenvalue, near it where
+        the factorised matrix is near ∂g/∂w."""
         v = np.random.default_rng(0).standard_normal(self.n)
         for _ in range(SOFTEST_ITERATIONS):
-            v = self._cho.solve(v)
+            v = scale * self._cho.solve(scale * v)
             v /= np.linalg.norm(v)
-        return float(v @ self._jac_product(v))
+        return float((v / scale) @ self._jac_product(v / scale))
 
     def moved_to(self, surface, w, delta, row):
         """This linearisation as the approximate inverse of the bordered matrix at a nearby state

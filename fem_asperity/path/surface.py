@@ -186,18 +186,35 @@ class LJSurface(SurfaceShape):
         return self._stiffness32[first:last, first:last] - (self.load_factor * spring).astype(
             np.float32)
 
-    def tangent_norm(self, slope):
-        """An upper bound of ‖∂g/∂w‖∞ (so of its spectral norm) for the spring `slope`: the
-        stiffness's absolute row sums plus the springs' (the hat functions are ≥ 0 and sum to
-        1)."""
-        return float(np.max(self._stiffness_row_sums
-                            + self.load_factor * (self.interp_t @ np.abs(slope))))
+    def tangent_diagonal(self, slope):
+        """The diagonal of ∂g/∂w for the spring `slope`, in double precision."""
+        return self._stiffness_diagonal - self.load_factor * (self._interp_squared_t @ slope)
+
+    def scaled_tangent_norm(self, slope, scale):
+        """‖D ∂g/∂w D‖∞ (a bound of its spectral norm), D = diag(1/`scale`), for the spring
+        `slope`: the stiffness's scaled absolute row sums, with the entries the springs change
+        replaced."""
+        inverse, n = 1.0 / scale, scale.size
+        rows, cols = np.divmod(self._spring_entries, n)
+        stiffness = self.stiffness.reshape(-1)[self._spring_entries]
+        changed = np.abs(stiffness - self.load_factor * (self._spring_map @ slope))
+        sums = self._stiffness_abs @ inverse + np.bincount(
+            rows, (changed - np.abs(stiffness)) * inverse[cols], minlength=n)
+        return float(np.max(inverse * sums))
 
     @cached_property
-    def _stiffness_row_sums(self):
-        """Absolute row sums of the stiffness (built when a stability flag first needs them,
-        not with every grid)."""
-        return np.abs(self.stiffness).sum(axis=1)
+    def _stiffness_abs(self):
+        """|S| (built when a stability flag first needs it, not with every grid)."""
+        return np.abs(self.stiffness)
+
+    @cached_property
+    def _stiffness_diagonal(self):
+        return self.stiffness.diagonal().copy()
+
+    @cached_property
+    def _interp_squared_t(self):
+        """(N ∘ N)ᵀ: the spring matrix Nᵀ diag(s) N has the diagonal (N ∘ N)ᵀ s."""
+        return self.interp.multiply(self.interp).T.tocsr()
 
     def tangent_product(self, slope, x):
         """(∂g/∂w) x in double precision for the spring `slope` (from `sensitivities`)."""
