@@ -111,22 +111,23 @@ def _spd(n, rng):
     return (a @ a.T + n * np.eye(n)).astype(np.float32)
 
 
-def test_edge_block_cholesky_solves_the_matrix_and_its_new_edge():
+@pytest.mark.parametrize("block", [(12, 20), (0, 8), (32, 40)])
+def test_edge_block_cholesky_solves_the_matrix_and_its_new_edge(block):
     """The block factorisation solves J x = b to single precision, and with a new edge block
-    (`with_edge`) solves the matrix with that block; a matrix that is not positive definite in
-    its bulk or its edge raises LinAlgError."""
+    (`with_edge`) solves the matrix with that block, the block inside or at either end; a
+    matrix that is not positive definite in its bulk or its edge raises LinAlgError."""
     rng = np.random.default_rng(1)
-    jac, block = _spd(40, rng), (12, 20)
+    jac, edge = _spd(40, rng), slice(*block)
     rhs = rng.random(40)
     factor = EdgeBlockCholesky(jac, block)
     exact = np.linalg.solve(jac.astype(float), rhs)
     assert np.max(np.abs(factor.solve(rhs) - exact)) <= 1e-5 * np.max(np.abs(exact))
     changed = jac.copy()
-    changed[12:20, 12:20] += _spd(8, rng)
+    changed[edge, edge] += _spd(8, rng)
     exact = np.linalg.solve(changed.astype(float), rhs)
-    moved = factor.with_edge(changed[12:20, 12:20])
+    moved = factor.with_edge(changed[edge, edge])
     assert np.max(np.abs(moved.solve(rhs) - exact)) <= 1e-5 * np.max(np.abs(exact))
-    for bad in ((0, 0), (15, 15)):  # a negative pivot in the bulk, then in the edge
+    for bad in ((20, 20), (block[0] + 3,) * 2):  # a negative pivot in the bulk, then the edge
         indefinite = jac.copy()
         indefinite[bad] = -1e3
         with pytest.raises(LinAlgError):
