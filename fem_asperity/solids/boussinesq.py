@@ -11,7 +11,8 @@ Q(m₁) = K(m₁)/π analytic, and the whole kernel is singular on the circle |s
 s-plane. The integral over each element of the radial grid is therefore done in three ways:
 
 - far from r (distance ≥ the element's length): Gauss-Legendre, 8 points, error ≈ 5.8⁻¹⁶, and
-  4 from 9 lengths on, where that is as accurate (`_NEAR`);
+  fewer further out where that is as accurate: 6 from 2.5 lengths, 5 from 4, 4 from 9
+  (`_NEAR`, `_MID_RULES`);
 - near r: as ∫_r^b − ∫_r^a, each split into pieces that double in length away from r, so that
   every piece is at least its own length away from the singular circle;
 - on the piece that starts at r: the log term −2 f Q̃(m₁) ln|s−r| (Q̃ the Taylor polynomial of
@@ -84,10 +85,12 @@ def _unit_gauss(n):
 _GL = _unit_gauss(_POINTS)
 _LOG = log_gauss(_POINTS)
 #: Far-field rules by the distance from r to an element, in element lengths: Gauss-Legendre with
-#: 8 points from 1 to 9 lengths (`_NEAR`), 4 beyond, whose error ρ^(−2n) (ρ = x + √(x² − 1),
-#: x = 1 + 2 × distance/length) is at most the 8-point rule's at one length, 5.7e-13;
-#: test_bem.py::test_displacement_matrix_matches_adaptive_quadrature.
-_NEAR, _NEAR_RULE, _FAR_RULE = (1.0, 9.0), _unit_gauss(8), _unit_gauss(4)
+#: 8 points from 1 length (`_NEAR`), 6 from 2.5, 5 from 4 (`_MID_RULES`), 4 from 9 lengths on,
+#: each rule's error ρ^(−2n) (ρ = x + √(x² − 1), x = 1 + 2 × distance/length) at most the
+#: 8-point rule's at one length, 5.7e-13 (6 points at 2.5 lengths: 1.2e-13; 5 at 4: 2.9e-13; 4 at
+#: 9: 2.3e-13); test_bem.py::test_displacement_matrix_matches_adaptive_quadrature.
+_NEAR, _FAR_RULE = (1.0, 9.0), _unit_gauss(4)
+_MID_RULES = ((1.0, _unit_gauss(8)), (2.5, _unit_gauss(6)), (4.0, _unit_gauss(5)))
 
 
 def kernel(r, s):
@@ -103,16 +106,17 @@ def _split_kernel(r, s):
     return f * (ellipkm1(m1) + 2.0 * q * np.log(np.abs(s - r))), -2.0 * f * q
 
 
-def _from_point(r, c, a, length):
-    """∫_r^c kernel(r, s) · (1, (s − a)/length) ds for arrays r > 0, c, a, length (same shape)."""
+def _from_point(r, c):
+    """(∫_r^c kernel(r, s) ds, ∫_r^c kernel(r, s) (s − r) ds) for arrays r > 0 and c (same
+    shape)."""
     i0, i1 = np.zeros(r.size), np.zeros(r.size)
     live = c != r
     if live.any():
-        i0[live], i1[live] = _from_point_live(r[live], c[live], a[live], length[live])
+        i0[live], i1[live] = _from_point_live(r[live], c[live])
     return i0, i1
 
 
-def _from_point_live(r, c, a, length):
+def _from_point_live(r, c):
     span = np.abs(c - r)
     sign = np.sign(c - r)
     first = np.minimum(span, 0.5 * r)
@@ -120,41 +124,51 @@ def _from_point_live(r, c, a, length):
     # the piece [r, r + first·sign]: log part by the −ln x rule, the rest by Gauss-Legendre
     s = r[:, None] + (sign * first)[:, None] * x
     regular, log = _split_kernel(r[:, None], s)
-    lin = (s - a[:, None]) / length[:, None]
     values = (regular + log * np.log(first)[:, None]) * wx
-    i0, i1 = values.sum(1), (values * lin).sum(1)
+    i0, i1 = values.sum(1), (values * (s - r[:, None])).sum(1)
     t, wt = _LOG
     s = r[:, None] + (sign * first)[:, None] * t
     _, log = _split_kernel(r[:, None], s)
-    lin = (s - a[:, None]) / length[:, None]
     i0 -= (log * wt).sum(1)
-    i1 -= (log * lin * wt).sum(1)
+    i1 -= (log * (s - r[:, None]) * wt).sum(1)
     i0, i1 = sign * first * i0, sign * first * i1
     # pieces doubling in length away from r, each at least its length from the circle |s| = r
-    lo = first.copy()
-    while np.any(lo < span):
-        hi = np.minimum(2.0 * lo, span)
-        s = r[:, None] + sign[:, None] * (lo[:, None] + (hi - lo)[:, None] * x)
-        k = kernel(r[:, None], s) * wx * (sign * (hi - lo))[:, None]
-        i0 += k.sum(1)
-        i1 += (k * (s - a[:, None]) / length[:, None]).sum(1)
-        lo = hi
+    lo, live = first.copy(), np.flatnonzero(first < span)
+    while live.size:
+        hi = np.minimum(2.0 * lo[live], span[live])
+        rl, sl = r[live, None], sign[live, None]
+        s = rl + sl * (lo[live, None] + (hi - lo[live])[:, None] * x)
+        k = kernel(rl, s) * wx * (sl * (hi - lo[live])[:, None])
+        i0[live] += k.sum(1)
+        i1[live] += (k * (s - rl)).sum(1)
+        lo[live] = hi
+        live = live[hi < span[live]]
     return i0, i1
 
 
-def _near_pairs(r, a, b, length, ratio):
-    """(∫ kernel(r, s) ds, ∫ kernel(r, s) (s − a)/length ds) over the elements [a, b] for arrays
-    of pairs nearer than _NEAR[1] lengths (`ratio`: distance in lengths, < 0 inside): the
-    8-point rule from _NEAR[0] lengths, the singular split below."""
+def _near_pairs(r, point, element, nodes, ratio):
+    """(∫ kernel(r, s) ds, ∫ kernel(r, s) (s − a)/length ds) over the elements [a, b] =
+    nodes[element], nodes[element + 1] for arrays of pairs nearer than _NEAR[1] lengths
+    (`ratio`: distance in lengths, < 0 inside; `point`: integer ids of the radii r, equal where
+    r is): the `_MID_RULES` from _NEAR[0] lengths, the singular split below, as integrals from
+    r to each end (`_from_point`), done once for an end that neighbouring elements share."""
+    a, b = nodes[element], nodes[element + 1]
+    length = b - a
     i0, i1 = np.empty(r.size), np.empty(r.size)
-    mid = ratio >= _NEAR[0]
-    x, wx = _NEAR_RULE
-    k = kernel(r[mid, None], a[mid, None] + length[mid, None] * x) * (wx * length[mid, None])
-    i0[mid], i1[mid] = k.sum(1), k @ x
-    close = ~mid
-    hi0, hi1 = _from_point(r[close], b[close], a[close], length[close])
-    lo0, lo1 = _from_point(r[close], a[close], a[close], length[close])
-    i0[close], i1[close] = hi0 - lo0, hi1 - lo1
+    bounds = [bound for bound, _ in _MID_RULES[1:]] + [np.inf]
+    for (start, (x, wx)), stop in zip(_MID_RULES, bounds):
+        mid = (ratio >= start) & (ratio < stop)
+        k = kernel(r[mid, None], a[mid, None] + length[mid, None] * x) * (wx * length[mid, None])
+        i0[mid], i1[mid] = k.sum(1), k @ x
+    close = ratio < _NEAR[0]
+    r, a, length, element = r[close], a[close], length[close], element[close]
+    keys = np.tile(point[close] * nodes.size, 2) + np.concatenate([element, element + 1])
+    ends, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
+    to_end = (moment[inverse] for moment in _from_point(np.tile(r, 2)[first],
+                                                         nodes[ends % nodes.size]))
+    (from_a, from_b), (moment_a, moment_b) = (np.split(m, 2) for m in to_end)
+    i0[close] = from_b - from_a
+    i1[close] = (moment_b - moment_a + (r - a) * i0[close]) / length
     return i0, i1
 
 
@@ -184,7 +198,7 @@ def displacement_matrix(nodes, r):
         i0, i1 = k.sum(-1).ravel(), (k @ x).ravel()
         pairs = np.flatnonzero(ratio < _NEAR[1])
         q, e = np.divmod(pairs, a.size)
-        i0[pairs], i1[pairs] = _near_pairs(rr[q], a[e], b[e], length[e], ratio.ravel()[pairs])
+        i0[pairs], i1[pairs] = _near_pairs(rr[q], q, e, nodes, ratio.ravel()[pairs])
         i0, i1 = i0.reshape(ratio.shape), i1.reshape(ratio.shape)
         A[start:start + rows, :-1] += i0 - i1
         A[start:start + rows, 1:] += i1
@@ -327,7 +341,7 @@ def galerkin_matrix(nodes):
         add(interpolated(rows, cols) if separated else full(rows, cols), rows, cols)
     q, e = (np.concatenate(column) for column in zip(*near))
     r = points.ravel()[q]
-    i0, i1 = _near_pairs(r, a[e], b[e], length[e], _distance_ratio(r, a[e], b[e], length[e]))
+    i0, i1 = _near_pairs(r, q, e, nodes, _distance_ratio(r, a[e], b[e], length[e]))
     with np.errstate(divide="ignore", invalid="ignore"):
         summed = symmetric_kernel(r[:, None], points[e]) * weights[e]  # what the block added
     summed[r[:, None] == points[e]] = 0.0
