@@ -246,7 +246,10 @@ def _partition(a, b, rows, cols):
     """The upper triangle (cols not before rows) of the element pairs, as (rows, cols,
     separated) blocks of element slices: `separated` blocks lie at least their larger extent
     and _NEAR[1] of their longest element apart (an analytic kernel there, interpolated by
-    `galerkin_matrix`); the others are at most _LEAF elements each way (the kernel in full)."""
+    `galerkin_matrix`); the others are at most _LEAF elements each way (the kernel in full).
+    A block apart from the diagonal is halved on its longer span, not its side of more
+    elements: on a graded grid, next to fine elements, that separates blocks sooner (a μ = 10
+    edge grid: 0.7 million kernel values in full blocks instead of 1.7)."""
     m, n = rows.stop - rows.start, cols.stop - cols.start
     if rows == cols:
         if m <= _LEAF:
@@ -258,13 +261,13 @@ def _partition(a, b, rows, cols):
         yield from _partition(a, b, second, second)
         return
     gap = a[cols.start] - b[rows.stop - 1]
-    extent = max(b[rows.stop - 1] - a[rows.start], b[cols.stop - 1] - a[cols.start])
+    row_extent, col_extent = b[rows.stop - 1] - a[rows.start], b[cols.stop - 1] - a[cols.start]
     longest = max(np.max(b[rows] - a[rows]), np.max(b[cols] - a[cols]))
-    if gap >= max(extent, _NEAR[1] * longest):
+    if gap >= max(row_extent, col_extent, _NEAR[1] * longest):
         yield rows, cols, True
     elif m <= _LEAF and n <= _LEAF:
         yield rows, cols, False
-    elif m >= n:
+    elif (row_extent >= col_extent and m > 1) or n == 1:
         for half in _halves(rows):
             yield from _partition(a, b, half, cols)
     else:
