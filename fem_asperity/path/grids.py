@@ -40,9 +40,8 @@ LANDING_STAGE, MAX_STAGES = 100, 500
 #: than STILL × band since the last grid counts as still (round-off must not move its band).
 #: test_tracking.py::test_grids_ahead_of_the_edges_build_fewer_grids_for_the_same_curve.
 AHEAD, STILL = 0.4, 0.05
-#: `EdgeGrids.settle`'s Newton: δ̄o fixed (the observables are (x̄o, δ̄o, P̄)), at most
-#: SETTLE_NEWTON iterations (the continuation's default; a moved state took 2-4 at μ = 10).
-_DELTA, SETTLE_NEWTON = np.array([0.0, 1.0, 0.0]), 10
+#: The constraint of `EdgeGrids.settle`'s Newton: δ̄o fixed (the observables are (x̄o, δ̄o, P̄)).
+_DELTA = np.array([0.0, 1.0, 0.0])
 _STIFFEST_SLOPE = float(scaled_traction_slope(TIP_GAP))
 
 
@@ -190,18 +189,15 @@ class EdgeGrids:
         δ̄o (`continuation.correct`, whose edge-block factorisations cost less than a landing's
         full ones: BEM `draft`, μ = 20, spent 18 % of its time landing such moves). Where Newton
         fails, or its state is unstable or no longer fits the grid, it is landed (`land`) from
-        the moved state instead (a failed Newton counted at SETTLE_NEWTON iterations: it stops
-        there, or sooner only on a singular factorisation)."""
+        the moved state instead."""
         moved, w_moved = self._moved(surface, w, delta)
         corrected = correct(moved, w_moved, delta, _DELTA, np.array([0.0, delta, 0.0]), 0.0,
-                            tol=tol, max_newton=SETTLE_NEWTON)
-        spent = SETTLE_NEWTON
+                            tol=tol)
         if corrected is not None:
-            w_corrected, _, spent, linear = corrected
+            w_corrected, _, iterations, linear = corrected
             if linear.stable and self.fits(moved, w_corrected, delta):
-                return moved, w_corrected, spent
-        landed, w_landed, iterations = self.land(moved, w_moved, delta, tol=tol)
-        return landed, w_landed, spent + iterations
+                return moved, w_corrected, iterations
+        return self.land(moved, w_moved, delta, tol=tol)
 
     def transplant(self, nodes, w, delta):
         """(surface, w): the state (w, δ̄o), given on the radial `nodes` of a grid that may no
@@ -257,8 +253,7 @@ class FixedGrid:
         return True
 
     def settle(self, surface, w, delta, *, tol=1e-9):
-        """`land` (never needed: a state never leaves a fixed grid)."""
-        return self.land(surface, w, delta, tol=tol)
+        """Never called: a state never leaves a fixed grid."""
 
     def transplant(self, nodes, w, delta):
         """(surface, w): the state given on the radial `nodes` moved to this grid (w interpolated
