@@ -116,34 +116,6 @@ def test_grids_ahead_of_the_edges_build_fewer_grids_for_the_same_curve(monkeypat
         assert difference <= ahead.error_estimate[key], key
 
 
-def test_a_moved_equilibrium_settles_where_a_landing_goes(monkeypatch):
-    """An equilibrium in contact (BEM `draft` on edge grids, μ = 5) moved to a new grid and
-    corrected there by Newton at fixed δ̄o (`EdgeGrids.settle`) is a stable equilibrium that
-    fits its grid, the one the landing from the same moved state finds (P̄ to 1e-10, ā_c to
-    1e-8); where Newton fails (here made to), settle lands."""
-    from fem_asperity.path import grids as module
-    from fem_asperity.path.branches import stable_paths
-    from fem_asperity.path.continuation import Linearisation
-
-    disc = discretisation(5.0, "draft", method="bem", track_edge=True)
-    grids = disc.grids(5.0)
-    trace = stable_paths(grids, disc.trace)[-1]
-    k = next(i for i, a in enumerate(trace.a_c) if a > 1.0 and trace.stable[i])
-    delta = trace.delta[k]
-    moved = grids.transplant(trace.nodes[k], trace.states[k], delta)
-    surface, w, _ = grids.land(*moved, delta)
-    settled, w_settled, _ = grids.settle(surface, w, delta)
-    monkeypatch.setattr(module, "correct", lambda *args, **kwargs: None)
-    landed, w_landed, _ = grids.settle(surface, w, delta)
-    assert np.array_equal(settled.r_nodes, landed.r_nodes) and settled is not surface
-    assert grids.fits(settled, w_settled, delta)
-    assert Linearisation(settled, w_settled, delta, np.array([0.0, 1.0, 0.0])).stable
-    assert settled.force(w_settled, delta) == pytest.approx(landed.force(w_landed, delta),
-                                                            abs=1e-10)
-    assert settled.contact(w_settled, delta)[1] == pytest.approx(
-        landed.contact(w_landed, delta)[1], abs=1e-8)
-
-
 def test_grids_tell_which_states_they_resolve():
     """The pre-contact grid resolves states without contact only; a surface built elsewhere
     resolves none."""

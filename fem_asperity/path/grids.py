@@ -25,7 +25,6 @@ import numpy as np
 from ..closed_forms.lj import scaled_traction_slope
 from ..plumbing.errors import ContinuationError, InputError
 from ..solids.bem import BoussinesqSurface, radial_grid
-from .continuation import correct
 from .landing import land
 from .surface import TIP_GAP, LJSurface, SurfaceShape
 
@@ -40,8 +39,6 @@ LANDING_STAGE, MAX_STAGES = 100, 500
 #: than STILL × band since the last grid counts as still (round-off must not move its band).
 #: test_tracking.py::test_grids_ahead_of_the_edges_build_fewer_grids_for_the_same_curve.
 AHEAD, STILL = 0.4, 0.05
-#: The constraint of `EdgeGrids.settle`'s Newton: δ̄o fixed (the observables are (x̄o, δ̄o, P̄)).
-_DELTA = np.array([0.0, 1.0, 0.0])
 _STIFFEST_SLOPE = float(scaled_traction_slope(TIP_GAP))
 
 
@@ -183,22 +180,6 @@ class EdgeGrids:
         raise ContinuationError(f"no stable state on a grid that fits it at δ = {delta:.6g} "
                                 f"({MAX_STAGES} stages of landing)")
 
-    def settle(self, surface, w, delta, *, tol=1e-9):
-        """(surface, w, Newton iterations): the equilibrium (w, δ̄o) of a branch whose edges left
-        `surface`'s band, moved to the grid of its edges and corrected there by Newton at fixed
-        δ̄o (`continuation.correct`, whose edge-block factorisations cost less than a landing's
-        full ones: BEM `draft`, μ = 20, spent 18 % of its time landing such moves). Where Newton
-        fails, or its state is unstable or no longer fits the grid, it is landed (`land`) from
-        the moved state instead."""
-        moved, w_moved = self._moved(surface, w, delta)
-        corrected = correct(moved, w_moved, delta, _DELTA, np.array([0.0, delta, 0.0]), 0.0,
-                            tol=tol)
-        if corrected is not None:
-            w_corrected, _, iterations, linear = corrected
-            if linear.stable and self.fits(moved, w_corrected, delta):
-                return moved, w_corrected, iterations
-        return self.land(moved, w_moved, delta, tol=tol)
-
     def transplant(self, nodes, w, delta):
         """(surface, w): the state (w, δ̄o), given on the radial `nodes` of a grid that may no
         longer exist (or another discretisation's), moved to the grid of its edges here (w
@@ -252,9 +233,6 @@ class FixedGrid:
     def fits(self, surface, w, delta):
         return True
 
-    def settle(self, surface, w, delta, *, tol=1e-9):
-        """Never called: a state never leaves a fixed grid."""
-
     def transplant(self, nodes, w, delta):
         """(surface, w): the state given on the radial `nodes` moved to this grid (w interpolated
         linearly; not in equilibrium there: `land` it)."""
@@ -286,8 +264,7 @@ class Grids(Protocol):
     start: the `LJSurface` of the first state (far from contact). fits(surface, w, δ̄o): the
     surface resolves the state as well as one built for it. admits(...): it still resolves it
     (a continuation step beyond is retried shorter). land(surface, w, δ̄o, tol=...): (surface,
-    w, iterations) of the stable state downhill, on a surface that fits it. settle(...): the
-    same for an equilibrium that no longer fits its surface (a branch's next grid).
+    w, iterations) of the stable state downhill, on a surface that fits it.
     record_move(ΔP̄, Δā_c): note the force and contact-radius changes of a state moved to a new
     grid. transplant(nodes, w, δ̄o): (surface, w) of a state given on other radial nodes, moved
     here. summary(): a clause for the curve's message. dofs, largest_nodes: the cost of the
@@ -301,9 +278,6 @@ class Grids(Protocol):
     def fits(self, surface: LJSurface, w: np.ndarray, delta: float) -> bool: ...
 
     def admits(self, surface: LJSurface, w: np.ndarray, delta: float) -> bool: ...
-
-    def settle(self, surface: LJSurface, w: np.ndarray, delta: float, *,
-               tol: float) -> tuple[LJSurface, np.ndarray, int]: ...
 
     def land(self, surface: LJSurface, w: np.ndarray, delta: float, *,
              tol: float) -> tuple[LJSurface, np.ndarray, int]: ...
