@@ -316,7 +316,7 @@ class Linearisation:
         factorisation that succeeded if it is in double precision; else not where a diagonal
         entry is ≤ 0; else by the Rayleigh quotient q of the Jacobi-scaled ∂g/∂w that inverse
         iteration finds (`_softest`), if it is clearly negative (then so is the softest
-        eigenvalue) or clearly positive (≥ SURE_SIGN of a bound of the scaled matrix's norm,
+        eigenvalue) or clearly positive (≥ SURE_SIGN of the scaled matrix's ‖·‖∞,
         `LJSurface.scaled_tangent_norm`); else by a double-precision factorisation."""
         if self._stable is None:
             diagonal = self._diagonal()

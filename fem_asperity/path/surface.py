@@ -187,8 +187,12 @@ class LJSurface(SurfaceShape):
             np.float32)
 
     def tangent_diagonal(self, slope):
-        """The diagonal of ∂g/∂w for the spring `slope`, in double precision."""
-        return self._stiffness_diagonal - self.load_factor * (self._interp_squared_t @ slope)
+        """The diagonal of ∂g/∂w for the spring `slope`, in double precision (the spring
+        entries on it, `_spring_pattern`, subtracted from the stiffness's)."""
+        on_diagonal, nodes = self._spring_diagonal
+        diagonal = self.stiffness.diagonal().copy()
+        diagonal[nodes] -= self.load_factor * (self._spring_map[on_diagonal] @ slope)
+        return diagonal
 
     def scaled_tangent_norm(self, slope, scale):
         """‖D ∂g/∂w D‖∞ (a bound of its spectral norm), D = diag(1/`scale`), for the spring
@@ -208,13 +212,11 @@ class LJSurface(SurfaceShape):
         return np.abs(self.stiffness)
 
     @cached_property
-    def _stiffness_diagonal(self):
-        return self.stiffness.diagonal().copy()
-
-    @cached_property
-    def _interp_squared_t(self):
-        """(N ∘ N)ᵀ: the spring matrix Nᵀ diag(s) N has the diagonal (N ∘ N)ᵀ s."""
-        return self.interp.multiply(self.interp).T.tocsr()
+    def _spring_diagonal(self):
+        """(which spring entries lie on the diagonal, their nodes)."""
+        rows, cols = np.divmod(self._spring_entries, self.r_nodes.size)
+        on_diagonal = np.flatnonzero(rows == cols)
+        return on_diagonal, rows[on_diagonal]
 
     def tangent_product(self, slope, x):
         """(∂g/∂w) x in double precision for the spring `slope` (from `sensitivities`)."""
