@@ -134,6 +134,23 @@ def test_grids_tell_which_states_they_resolve():
     assert not grids.fits(other, apart, delta)
 
 
+def test_the_next_grid_is_placed_ahead_the_way_each_edge_moved_since_the_last_was_built():
+    """A grid built for the edges (5.0, 8.0) and centred ahead of both (5.04, 8.04); the state
+    then at (5.09, 8.01): both edges moved outward, the crack tip by less than the grid's lead,
+    so the next grid is centred AHEAD × band beyond each. (Measured from the centre the tip
+    seemed to move back, and the grids alternated.)"""
+    from fem_asperity.path.grids import AHEAD, EdgeGrids
+    from fem_asperity.solids.bem import radial_grid
+
+    band = 0.1
+    grids = EdgeGrids(5.0, h=0.01, band=band, h_inside=0.1, contact_h=0.05, contact_r=4.0,
+                      r_max=100.0)
+    surface = grids._surface(radial_grid(h=0.5, r_fine=10.0, r_max=20.0), (5.04, 8.04),
+                             (5.0, 8.0))
+    centre = grids._ahead(surface, (5.09, 8.01))
+    assert centre == pytest.approx((5.09 + AHEAD * band, 8.01 + AHEAD * band), abs=1e-12)
+
+
 def test_predictor_moves_the_crack_tip_front_along():
     """Two states whose gap profiles are one front translated by 0.05: the prediction one step
     on (fraction 1) is that front translated again, within the window, to interpolation error
