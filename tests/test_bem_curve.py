@@ -109,22 +109,85 @@ def test_stable_branches_give_the_paths_of_the_whole_curve():
     assert misses[1] < 0.25 * misses[0]
 
 
-def test_energy_descent_lands_where_newton_on_the_traced_branch_does():
+@pytest.fixture(scope="module")
+def whole_mu2():
+    """(surface, trace, stable flags, fold indices, (jump in, jump out)) of the whole curve at
+    μ = 2, BEM `draft`, its unstable branch traced."""
+    result = solve_discretised(2.0, discretisation(2.0, "draft", method="bem"),
+                               unstable_branch=True)
+    traced = result.model.trace
+    stable = np.asarray(traced.stable)
+    folds = np.nonzero(stable[:-1] != stable[1:])[0]
+    return (result.model.surface, traced, stable, folds,
+            (result.events.jump_in, result.events.jump_out))
+
+
+def test_energy_descent_lands_where_newton_on_the_traced_branch_does(whole_mu2):
     """Both jumps of the whole curve at μ = 2: `land` from the first unstable point past each
     fold, at the fold's δ̄o, reaches the state that Newton from the traced stable branch found."""
     from fem_asperity.path.landing import land
 
-    result = solve_discretised(2.0, discretisation(2.0, "draft", method="bem"),
-                               unstable_branch=True)
-    surface, traced = result.model.surface, result.model.trace
-    stable = np.asarray(traced.stable)
-    folds = np.nonzero(stable[:-1] != stable[1:])[0]
-    jumps = (result.events.jump_in, result.events.jump_out)
+    surface, traced, stable, folds, jumps = whole_mu2
     for k, jump in zip(folds, jumps):
         beyond = k + 1 if stable[k] else k  # the unstable point next to the fold
         w, _, converged = land(surface, traced.states[beyond], jump.delta)
         assert converged
         assert surface.force(w, jump.delta) == pytest.approx(jump.p_after, rel=1e-8)
+
+
+def test_a_peel_from_the_jump_out_fold_leads_the_descent_to_its_landing(whole_mu2):
+    """At the jump-out of μ = 2: `peel` from the first unstable point past the fold, the crack
+    tip moved the way it moves there, lowers the energy and takes the tip most of the way in
+    (measured 0.87 to 0.075 √(Rε)); `land` from the peeled state reaches the state that Newton
+    from the traced stable branch found."""
+    from fem_asperity.path.landing import land, peel
+
+    surface, traced, stable, folds, jumps = whole_mu2
+    k, delta = folds[1], jumps[1].delta
+    beyond, before = (k + 1, k) if stable[k] else (k, k + 1)
+    tips = [surface.crack_tip(traced.states[i], traced.delta[i]) for i in (before, beyond)]
+    start = traced.states[beyond]
+    peeled = peel(surface, start, delta, np.sign(tips[1] - tips[0]),
+                  h=np.min(np.diff(surface.r_nodes)), max_step=0.1, reach=(0.0, np.inf),
+                  fits=lambda w: True)
+    assert surface.energy(peeled.w, delta) < surface.energy(start, delta)
+    assert surface.crack_tip(peeled.w, delta) < 0.25 * tips[1]
+    landed = land(surface, peeled.w, delta)
+    assert landed.converged
+    assert surface.force(landed.w, delta) == pytest.approx(jumps[1].p_after, rel=1e-8)
+
+
+def test_a_pinned_crack_tip_gives_the_minimum_that_holds_it(whole_mu2):
+    """`pinned` at the crack tip of a stable traced state returns that state (its point load
+    vanishing), and a `peel` towards it from either side stops within a step of it; pinned 0.1 √(Rε)
+    further in, the gap there is TIP_GAP and every nearby state that keeps it (moved along
+    random directions that leave the pinned gap alone) has a higher energy."""
+    from fem_asperity.path.landing import _pin, peel, pinned
+    from fem_asperity.path.surface import TIP_GAP
+
+    surface, traced, stable, _, _ = whole_mu2
+    i = int(np.nonzero(stable & (np.asarray(traced.a_c) > 1.0))[0][0])
+    w, delta = traced.states[i], traced.delta[i]
+    tip = surface.crack_tip(w, delta)
+    itself = pinned(surface, w, delta, tip)
+    assert itself.converged and abs(itself.multiplier) < 1e-8
+    assert np.max(np.abs(itself.w - w)) < 1e-7
+    held = pinned(surface, w, delta, tip - 0.1)
+    assert held.converged and abs(held.multiplier) > 1e-4
+    nodes, weights = _pin(surface, tip - 0.1)
+    gaps = delta + surface.node_profile[nodes] - held.w[nodes]
+    assert weights @ gaps == pytest.approx(TIP_GAP, abs=1e-9)
+    energy, rng = surface.energy(held.w, delta), np.random.default_rng(0)
+    for _ in range(20):
+        v = rng.standard_normal(w.size)
+        v[nodes] -= weights * (weights @ v[nodes]) / (weights @ weights)
+        for t in (1e-3, -1e-3):
+            assert surface.energy(held.w + t * v / np.max(np.abs(v)), delta) > energy
+    for shift in (0.25, -0.25):  # from off the minimum, towards it: E rises past it
+        peeled = peel(surface, surface.translated(w, delta, shift), delta, -np.sign(shift),
+                      h=np.min(np.diff(surface.r_nodes)), max_step=0.1, reach=(0.0, np.inf),
+                      fits=lambda state: True)
+        assert abs(surface.crack_tip(peeled.w, delta) - tip) <= 0.1
 
 
 def test_a_refined_curve_gets_its_estimate_from_its_own_finer_solve():

@@ -483,8 +483,7 @@ def _shift_front(surface, trace_so_far, w_guess, d_guess, fraction, window):
     if min(tips) <= 0.0 or max(tips) >= r[-1]:
         return w_guess
     shift = fraction * (tips[1] - tips[0])
-    gaps = tr.delta[-1] + surface.node_profile - tr.states[-1]
-    moved = d_guess + surface.node_profile - np.interp(r - shift, r, gaps)
+    moved = surface.translated(tr.states[-1], tr.delta[-1], shift, d_guess)
     weight = np.clip(2.0 - np.abs(r - tips[1] - 0.5 * shift) / window, 0.0, 1.0)
     return w_guess + weight * (moved - w_guess)
 

@@ -25,7 +25,7 @@ import numpy as np
 from ..closed_forms.lj import scaled_traction_slope
 from ..plumbing.errors import ContinuationError, InputError
 from ..solids.bem import BoussinesqSurface, radial_grid
-from .landing import land
+from .landing import land, peel
 from .surface import TIP_GAP, LJSurface, SurfaceShape
 
 #: A landing on grids that follow the edge runs in stages of LANDING_STAGE iterations (then
@@ -131,6 +131,15 @@ class EdgeGrids:
             return built is not None and built[1] == edges[1]
         return max(abs(edges[0] - built[0]), abs(edges[1] - built[1])) <= reach
 
+    def _tips(self, surface):
+        """(lowest, highest) crack tip that `surface` fits (`fits`): within half a band of the
+        tip it was built for and beyond the band (a smaller one counts as no contact); on the
+        pre-contact grid, up to the band."""
+        tip, half = self._built_for[surface][0][1], 0.5 * self.band
+        if tip == 0.0:
+            return 0.0, self.band
+        return max(tip - half, self.band) * (1.0 + 1e-12), (tip + half) * (1.0 - 1e-12)
+
     def _grid(self, surface, w, delta, edges, centre):
         """Nodes of the grid centred at the (ā_c, tip) `centre` for the state (w, δ̄o) with its
         `edges`; the elements away from the band are sized for the gaps as if the tip had moved
@@ -168,20 +177,34 @@ class EdgeGrids:
 
     def land(self, surface, w, delta, *, tol=1e-9):
         """(surface, w, Newton iterations): the stable state at δ̄o downhill from w
-        (`landing.land`), on the grid of its contact edge and crack tip. In stages of
-        LANDING_STAGE iterations: whenever the iterate no longer fits its grid (a landing's
-        contact spreads beyond it) it moves to the grid of its edges (w interpolated linearly).
-        Raises ContinuationError if MAX_STAGES stages do not get there."""
-        iterations = 0
+        (`landing.land`), on the grid of its contact edge and crack tip. In stages: LANDING_STAGE
+        iterations of descent, or, after a descent stage that did not converge, a `peel` of the
+        crack tip the way the descent moved it, on one grid. Whenever the iterate no longer fits
+        its grid (a landing's contact spreads beyond it) it moves to the grid of its edges (w
+        interpolated linearly). Raises ContinuationError if MAX_STAGES stages do not get there."""
+        iterations, peeling = 0, 0.0
         for _ in range(MAX_STAGES):
             if not self.fits(surface, w, delta):
                 surface, w = self._moved(surface, w, delta)
+            if peeling:
+                peeled = peel(surface, w, delta, peeling, h=self.h, max_step=0.5 * self.band,
+                              reach=self._tips(surface),
+                              fits=lambda state, on=surface: self.fits(on, state, delta))
+                w, iterations = peeled.w, iterations + peeled.iterations
+                if peeled.left:
+                    surface, w = self._moved(surface, w, delta)
+                else:
+                    peeling = 0.0
+                continue
+            tip = surface.crack_tip(w, delta)
             landed = land(surface, w, delta, tol=tol, max_iterations=LANDING_STAGE)
             w, iterations = landed.w, iterations + landed.iterations
             if not np.all(np.isfinite(w)):
                 raise ContinuationError(f"the landing at δ = {delta:.6g} diverged")
             if landed.converged and self.fits(surface, w, delta):
                 return surface, w, iterations
+            if not landed.converged and tip > 0.0:
+                peeling = float(np.sign(surface.crack_tip(w, delta) - tip))
         raise ContinuationError(f"no stable state on a grid that fits it at δ = {delta:.6g} "
                                 f"({MAX_STAGES} stages of landing)")
 

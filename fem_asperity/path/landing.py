@@ -7,6 +7,11 @@ tangent is indefinite it is shifted by s·diag(S) until a Cholesky factorisation
 (Levenberg), and a backtracking line search keeps every gap above a fraction of itself and never
 lets E rise.
 So the unstable branch between the folds need not be traced.
+
+Where the contact's crack tip has far to travel (a jump out at large μ peels a contact of
+hundreds of grid spacings), the descent crawls: each Newton step moves the tip by about an
+element. `peel` then moves the tip along the valley the descent follows, the minima of E with
+the tip held at a radius (`pinned`), in steps of many elements while E falls.
 """
 
 from functools import partial
@@ -16,7 +21,7 @@ import numpy as np
 from scipy.linalg import LinAlgError, cho_solve
 
 from .continuation import ARMIJO, cholesky_in_place
-from .surface import gap_keeping_step
+from .surface import TIP_GAP, gap_keeping_step
 
 #: Levenberg shift of an indefinite tangent: raised SHIFT_RAISE times until Cholesky succeeds,
 #: from at least SHIFT_FLOOR (relative to the elastic diagonal); the next iteration starts from
@@ -34,6 +39,16 @@ BASE_ITERATIONS = 300
 #: Halvings of the energy line search (2^-30 of a step is below rounding of the energy). Not
 #: pinned by a test.
 MAX_HALVINGS = 30
+#: `pinned` converges to PEEL_TOL (residual relative, as `land`'s tol; the peel's states are
+#: waypoints, the landing's descent converges at its own tol) in at most PEEL_NEWTON
+#: iterations. A peel step that fails is halved, down to PEEL_SMALLEST × the grid spacing.
+#: Not pinned by a test.
+PEEL_TOL, PEEL_NEWTON, PEEL_SMALLEST = 1e-6, 10, 1.0 / 16.0
+#: The penalty ρ e eᵀ added to the tangent of a pinned state (e: the pin's interpolation
+#: weights) is PIN_PENALTY × the largest elastic diagonal entry at the pin: it makes the
+#: tangent positive definite where the pin removes its one unstable direction, and leaves the
+#: bordered system's solution unchanged. Not pinned by a test.
+PIN_PENALTY = 10.0
 
 
 def _shifted_factor(jac, weight, shift, floor, unshifted_first):
@@ -136,3 +151,113 @@ def land(surface, w, delta, *, tol=1e-9, max_iterations=None):
         if shift > 0.0:
             start = shift * (SHIFT_AFTER_SHORT if alpha < 1.0 else SHIFT_AFTER_FULL)
     return Landing(w, max_iterations, False)
+
+
+class Pinned(NamedTuple):
+    """Result of `pinned`: the state w, the Newton iterations, whether it converged, and the
+    multiplier λ (the point load, E* = 1 units, that holds the tip)."""
+
+    w: np.ndarray
+    iterations: int
+    converged: bool
+    multiplier: float
+
+
+def _pin(surface, tip):
+    """(the two nodes around the radius `tip`, their linear interpolation weights)."""
+    r = surface.r_nodes
+    i = int(np.clip(np.searchsorted(r, tip) - 1, 0, r.size - 2))
+    t = (tip - r[i]) / (r[i + 1] - r[i])
+    return np.array([i, i + 1]), np.array([1.0 - t, t])
+
+
+def pinned(surface, w, delta, tip, *, tol=PEEL_TOL, max_iterations=PEEL_NEWTON):
+    """The minimum of E(w; δ) near `w` with the crack tip held at the radius `tip` (√(Rε)):
+    the node gaps, interpolated linearly, equal TIP_GAP there (`SurfaceShape.crack_tip`).
+
+    The constraint eᵀw = c is linear in w. Newton on the bordered system [J e; eᵀ 0], solved
+    with the single-precision Cholesky factor of J + ρ e eᵀ (PIN_PENALTY): two solves per
+    iteration. Converged when the residual with the pin's load, g + λe, is ≤ tol relative and
+    the last increment ≤ √tol relative. Returns a `Pinned`; not converged where the penalised
+    tangent is not positive definite (the pin leaves an unstable direction) or after
+    `max_iterations`."""
+    nodes, weights = _pin(surface, tip)
+    held = weights @ (delta + surface.node_profile[nodes]) - TIP_GAP
+    pin = np.zeros_like(w)
+    pin[nodes] = weights
+    penalty = PIN_PENALTY * float(np.max(surface.stiffness[nodes, nodes]))
+    coupling = (penalty * np.outer(weights, weights)).astype(np.float32)
+    scale = 1.0 + np.max(np.abs(surface.stiffness @ w))
+    w = w.copy()
+    for iteration in range(1, max_iterations + 1):
+        g = surface.residual(w, delta)
+        jac = surface.tangent_matrix(surface.sensitivities(w, delta)[2])
+        jac[np.ix_(nodes, nodes)] += coupling
+        try:
+            solve = partial(_solve_single, cholesky_in_place(jac))
+        except LinAlgError:
+            return Pinned(w, iteration, False, np.nan)
+        free, along = solve(-g), solve(pin)
+        off = held - pin @ w
+        shifted = (pin @ free - off) / (pin @ along)  # λ − ρ·off
+        step = free - shifted * along
+        multiplier = shifted + penalty * off
+        if (np.max(np.abs(g + multiplier * pin)) <= tol * scale
+                and np.max(np.abs(step)) <= np.sqrt(tol) * (1.0 + np.max(np.abs(w)))):
+            return Pinned(w + step, iteration, True, multiplier)
+        w = w + gap_keeping_step(delta + surface.node_profile - w, -step) * step
+        if not np.all(np.isfinite(w)):
+            break
+    return Pinned(w, max_iterations, False, np.nan)
+
+
+class Peel(NamedTuple):
+    """Result of `peel`: the state w (lower in energy than the start, or the start), the Newton
+    iterations, and whether it stopped because the next state no longer fitted."""
+
+    w: np.ndarray
+    iterations: int
+    left: bool
+
+
+def peel(surface, w, delta, direction, *, h, max_step, reach, fits):
+    """The state reached from (w, δ) by moving its crack tip in `direction` (±1) along the
+    minima of E with the tip held (`pinned`), while E falls.
+
+    h: the grid's spacing at the tip (√(Rε)); max_step: the first and largest step; reach:
+    (lowest, highest) tip the surface resolves; fits(w): whether it resolves the state. Each
+    step starts from the gaps of the last state moved by the step (`translated`: a peeling
+    front moves nearly unchanged, and Newton converges from there in 2-3 iterations, where a
+    secant predictor in w blurs the steep front, needs 5 and fails beyond ~15 grid spacings);
+    a step that fails to converge is halved, one that converges doubled (up to max_step).
+    Stops at the first step that raises E (a minimum of E along the path lies behind: `land`
+    finds it), below PEEL_SMALLEST × h, at a tip ≤ 0 (also a start without a crack tip),
+    or at the end of `reach` or where the next state does not fit (left=True). The first state
+    is the pinned one at the start's own tip, accepted only if it lowers E, so E never rises
+    from `w`."""
+    tip = surface.crack_tip(w, delta)
+    if tip <= 0.0:
+        return Peel(w, 0, False)
+    held = pinned(surface, w, delta, tip)
+    iterations = held.iterations
+    if not held.converged or surface.energy(held.w, delta) > surface.energy(w, delta):
+        return Peel(w, iterations, False)
+    w, energy, step = held.w, surface.energy(held.w, delta), max_step
+    while step >= PEEL_SMALLEST * h:
+        target = min(max(tip + direction * step, reach[0]), reach[1])
+        if target <= 0.0:
+            break
+        if target == tip:
+            return Peel(w, iterations, True)
+        held = pinned(surface, surface.translated(w, delta, target - tip), delta, target)
+        iterations += held.iterations
+        if not held.converged:
+            step *= 0.5
+            continue
+        if not fits(held.w):
+            return Peel(w, iterations, True)
+        lower = surface.energy(held.w, delta)
+        if lower >= energy:
+            break
+        w, tip, energy, step = held.w, target, lower, min(2.0 * step, max_step)
+    return Peel(w, iterations, False)

@@ -129,6 +129,14 @@ class SurfaceShape:
         r0, r1, g0, g1 = self.r_nodes[i], self.r_nodes[i + 1], gaps[i], gaps[i + 1]
         return float(r0 + (r1 - r0) * (TIP_GAP - g0) / (g1 - g0))
 
+    def translated(self, w, delta, shift, new_delta=None):
+        """The state at `new_delta` (default δ) whose node gaps are those of (w, δ) moved
+        outward by `shift` (√(Rε)), linearly interpolated, the gap at r = 0 held below
+        `shift`: a crack tip's front at large μ moves nearly unchanged."""
+        gaps = delta + self.node_profile - w
+        moved = np.interp(self.r_nodes - shift, self.r_nodes, gaps)
+        return (delta if new_delta is None else new_delta) + self.node_profile - moved
+
     def centre_gap(self, w, delta):
         """x̄o = h(0) = δ − w(0), in ε."""
         return float(delta - w[0])
