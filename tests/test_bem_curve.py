@@ -148,7 +148,7 @@ def test_a_peel_from_the_jump_out_fold_leads_the_descent_to_its_landing(whole_mu
     tips = [surface.crack_tip(traced.states[i], traced.delta[i]) for i in (before, beyond)]
     start = traced.states[beyond]
     peeled = peel(surface, start, delta, np.sign(tips[1] - tips[0]),
-                  h=np.min(np.diff(surface.r_nodes)), max_step=0.1, reach=(0.0, np.inf),
+                  h=np.min(np.diff(surface.r_nodes)), max_step=0.1, tips=(0.0, np.inf),
                   fits=lambda w: True)
     assert surface.energy(peeled.w, delta) < surface.energy(start, delta)
     assert surface.crack_tip(peeled.w, delta) < 0.25 * tips[1]
@@ -185,7 +185,7 @@ def test_a_pinned_crack_tip_gives_the_minimum_that_holds_it(whole_mu2):
             assert surface.energy(held.w + t * v / np.max(np.abs(v)), delta) > energy
     for shift in (0.25, -0.25):  # from off the minimum, towards it: E rises past it
         peeled = peel(surface, surface.translated(w, delta, shift), delta, -np.sign(shift),
-                      h=np.min(np.diff(surface.r_nodes)), max_step=0.1, reach=(0.0, np.inf),
+                      h=np.min(np.diff(surface.r_nodes)), max_step=0.1, tips=(0.0, np.inf),
                       fits=lambda state: True)
         assert abs(surface.crack_tip(peeled.w, delta) - tip) <= 0.1
 

@@ -151,6 +151,32 @@ def test_the_next_grid_is_placed_ahead_the_way_each_edge_moved_since_the_last_wa
     assert centre == pytest.approx((5.09 + AHEAD * band, 8.01 + AHEAD * band), abs=1e-12)
 
 
+def test_peeled_jump_landings_on_edge_grids_land_where_the_descent_alone_does(monkeypatch):
+    """BEM `draft` at μ = 8: the jump landings on edge grids peel the crack tip along (measured:
+    4 peels moving it 1.18 √(Rε) in all) and land where the descent alone lands (the force
+    after the jump-out to 1e-9: measured equal to 1e-17)."""
+    from fem_asperity.path import grids
+    from fem_asperity.path.landing import Peel
+
+    travel = []
+
+    def peel(surface, w, delta, direction, **options):
+        peeled = real_peel(surface, w, delta, direction, **options)
+        travel.append(abs(surface.crack_tip(peeled.w, delta) - surface.crack_tip(w, delta)))
+        return peeled
+
+    real_peel = grids.peel
+    monkeypatch.setattr(grids, "peel", peel)
+    peeled = solve_curve(8.0, method="bem", accuracy="draft", error_estimate=False)
+    assert sum(travel) > 0.5
+    monkeypatch.setattr(grids, "peel", lambda surface, w, *args, **options: Peel(w, 0, False))
+    descended = solve_curve(8.0, method="bem", accuracy="draft", error_estimate=False)
+    for jump in ("jump_in", "jump_out"):
+        a, b = getattr(peeled.events, jump), getattr(descended.events, jump)
+        assert a.delta == pytest.approx(b.delta, abs=1e-9)
+        assert a.p_after == pytest.approx(b.p_after, abs=1e-9), jump
+
+
 def test_predictor_moves_the_crack_tip_front_along():
     """Two states whose gap profiles are one front translated by 0.05: the prediction one step
     on (fraction 1) is that front translated again, within the window, to interpolation error

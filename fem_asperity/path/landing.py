@@ -45,9 +45,10 @@ MAX_HALVINGS = 30
 #: Not pinned by a test.
 PEEL_TOL, PEEL_NEWTON, PEEL_SMALLEST = 1e-6, 10, 1.0 / 16.0
 #: The penalty ρ e eᵀ added to the tangent of a pinned state (e: the pin's interpolation
-#: weights) is PIN_PENALTY × the largest elastic diagonal entry at the pin: it makes the
-#: tangent positive definite where the pin removes its one unstable direction, and leaves the
-#: bordered system's solution unchanged. Not pinned by a test.
+#: weights) is PIN_PENALTY × the largest elastic diagonal entry at the pin: large enough, it
+#: makes the tangent positive definite where the pin removes its one unstable direction (too
+#: small, the Cholesky factorisation fails and the peel step is halved); it leaves the bordered
+#: system's solution unchanged. Not pinned by a test.
 PIN_PENALTY = 10.0
 
 
@@ -182,7 +183,7 @@ def pinned(surface, w, delta, tip, *, tol=PEEL_TOL, max_iterations=PEEL_NEWTON):
     tangent is not positive definite (the pin leaves an unstable direction) or after
     `max_iterations`."""
     nodes, weights = _pin(surface, tip)
-    held = weights @ (delta + surface.node_profile[nodes]) - TIP_GAP
+    held_value = weights @ (delta + surface.node_profile[nodes]) - TIP_GAP  # of eᵀw
     pin = np.zeros_like(w)
     pin[nodes] = weights
     penalty = PIN_PENALTY * float(np.max(surface.stiffness[nodes, nodes]))
@@ -198,7 +199,7 @@ def pinned(surface, w, delta, tip, *, tol=PEEL_TOL, max_iterations=PEEL_NEWTON):
         except LinAlgError:
             return Pinned(w, iteration, False, np.nan)
         free, along = solve(-g), solve(pin)
-        off = held - pin @ w
+        off = held_value - pin @ w
         shifted = (pin @ free - off) / (pin @ along)  # λ − ρ·off
         step = free - shifted * along
         multiplier = shifted + penalty * off
@@ -220,11 +221,11 @@ class Peel(NamedTuple):
     left: bool
 
 
-def peel(surface, w, delta, direction, *, h, max_step, reach, fits):
+def peel(surface, w, delta, direction, *, h, max_step, tips, fits):
     """The state reached from (w, δ) by moving its crack tip in `direction` (±1) along the
     minima of E with the tip held (`pinned`), while E falls.
 
-    h: the grid's spacing at the tip (√(Rε)); max_step: the first and largest step; reach:
+    h: the grid's spacing at the tip (√(Rε)); max_step: the first and largest step; tips:
     (lowest, highest) tip the surface resolves; fits(w): whether it resolves the state. Each
     step starts from the gaps of the last state moved by the step (`translated`: a peeling
     front moves nearly unchanged, and Newton converges from there in 2-3 iterations, where a
@@ -232,9 +233,9 @@ def peel(surface, w, delta, direction, *, h, max_step, reach, fits):
     a step that fails to converge is halved, one that converges doubled (up to max_step).
     Stops at the first step that raises E (a minimum of E along the path lies behind: `land`
     finds it), below PEEL_SMALLEST × h, at a tip ≤ 0 (also a start without a crack tip),
-    or at the end of `reach` or where the next state does not fit (left=True). The first state
-    is the pinned one at the start's own tip, accepted only if it lowers E, so E never rises
-    from `w`."""
+    or at the end of `tips` or where the next state does not fit (left=True). The first state
+    is the pinned one at the start's own tip, accepted only if E does not rise, so on one
+    surface E never rises from `w`."""
     tip = surface.crack_tip(w, delta)
     if tip <= 0.0:
         return Peel(w, 0, False)
@@ -244,7 +245,7 @@ def peel(surface, w, delta, direction, *, h, max_step, reach, fits):
         return Peel(w, iterations, False)
     w, energy, step = held.w, surface.energy(held.w, delta), max_step
     while step >= PEEL_SMALLEST * h:
-        target = min(max(tip + direction * step, reach[0]), reach[1])
+        target = min(max(tip + direction * step, tips[0]), tips[1])
         if target <= 0.0:
             break
         if target == tip:
@@ -252,12 +253,13 @@ def peel(surface, w, delta, direction, *, h, max_step, reach, fits):
         held = pinned(surface, surface.translated(w, delta, target - tip), delta, target)
         iterations += held.iterations
         if not held.converged:
-            step *= 0.5
+            step = 0.5 * abs(target - tip)  # the step taken, if `tips` cut it
             continue
         if not fits(held.w):
             return Peel(w, iterations, True)
-        lower = surface.energy(held.w, delta)
-        if lower >= energy:
+        next_energy = surface.energy(held.w, delta)
+        if next_energy >= energy:
             break
-        w, tip, energy, step = held.w, target, lower, min(2.0 * step, max_step)
+        w, tip, energy = held.w, target, next_energy
+        step = min(2.0 * step, max_step)
     return Peel(w, iterations, False)

@@ -131,8 +131,8 @@ class SurfaceShape:
 
     def translated(self, w, delta, shift, new_delta=None):
         """The state at `new_delta` (default δ) whose node gaps are those of (w, δ) moved
-        outward by `shift` (√(Rε)), linearly interpolated, the gap at r = 0 held below
-        `shift`: a crack tip's front at large μ moves nearly unchanged."""
+        outward by `shift` (√(Rε)), linearly interpolated; where r − shift falls outside the
+        nodes, the end gap is held. A crack tip's front at large μ moves nearly unchanged."""
         gaps = delta + self.node_profile - w
         moved = np.interp(self.r_nodes - shift, self.r_nodes, gaps)
         return (delta if new_delta is None else new_delta) + self.node_profile - moved
