@@ -32,7 +32,7 @@ def test_tangent_from_the_spring_map_is_the_assembled_tangent(method):
     assert np.max(np.abs(jac - assembled)) <= 1e-6 * np.max(np.abs(assembled))
 
 
-def test_scaled_tangent_norm_bounds_the_row_sums_of_the_scaled_tangent(traced):
+def test_scaled_tangent_norm_is_the_largest_row_sum_of_the_scaled_tangent(traced):
     """`scaled_tangent_norm` is ‖D ∂g/∂w D‖∞ (D = diag(∂g/∂w)^(−1/2), from `tangent_diagonal`)
     at a state in contact, where springs of both signs meet at the edge, though it never forms
     ∂g/∂w."""

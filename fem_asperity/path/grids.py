@@ -168,7 +168,7 @@ class EdgeGrids:
         band, nor from the pre-contact grid), ā_c kept within [0, tip]. From the edges of the
         state the grid was built for, not from its centre: measured from a centre placed
         ahead, an edge slower than the other seems to move back, and the grids alternate
-        (BEM `draft`, μ = 20: 422 grids instead of 63 after the jump in)."""
+        (BEM `draft`, μ = 20: 422 grids instead of 64 after the jump-in)."""
         built = self._built_for.get(surface, (None, None))[1]
         if built is None or built[1] == 0.0:
             return edges

@@ -93,6 +93,13 @@ def _solve_single(factor, rhs):
     return cho_solve(factor, rhs.astype(np.float32), check_finite=False).astype(float)
 
 
+def _converged(residual, step, w, scale, tol):
+    """Newton's test (as `continuation.correct`): the residual ≤ tol × `scale` and the last
+    increment ≤ √tol relative to w."""
+    return (np.max(np.abs(residual)) <= tol * scale
+            and np.max(np.abs(step)) <= np.sqrt(tol) * (1.0 + np.max(np.abs(w))))
+
+
 class Landing(NamedTuple):
     """Result of `land`: the state w, the iterations spent, and whether it is a stable
     equilibrium (else the last iterate)."""
@@ -134,8 +141,7 @@ def land(surface, w, delta, *, tol=1e-9, max_iterations=None):
         step += solve(-g - surface.tangent_product(slope, step) - shift * weight * step)
         if shift > 0.0:
             step += _negative_curvature(surface, slope, solve, step, g)
-        if shift == 0.0 and (np.max(np.abs(g)) <= tol * scale
-                             and np.max(np.abs(step)) <= np.sqrt(tol) * (1.0 + np.max(np.abs(w)))):
+        if shift == 0.0 and _converged(g, step, w, scale, tol):
             return Landing(w + step, iteration, True)
         alpha = gap_keeping_step(surface.gap(w, delta), -(surface.interp @ step))
         energy, descent = surface.energy(w, delta), float(g @ step)
@@ -203,8 +209,7 @@ def pinned(surface, w, delta, tip, *, tol=PEEL_TOL, max_iterations=PEEL_NEWTON):
         shifted = (pin @ free - off) / (pin @ along)  # λ − ρ·off
         step = free - shifted * along
         multiplier = shifted + penalty * off
-        if (np.max(np.abs(g + multiplier * pin)) <= tol * scale
-                and np.max(np.abs(step)) <= np.sqrt(tol) * (1.0 + np.max(np.abs(w)))):
+        if _converged(g + multiplier * pin, step, w, scale, tol):
             return Pinned(w + step, iteration, True, multiplier)
         w = w + gap_keeping_step(delta + surface.node_profile - w, -step) * step
         if not np.all(np.isfinite(w)):
@@ -241,9 +246,10 @@ def peel(surface, w, delta, direction, *, h, max_step, tips, fits):
         return Peel(w, 0, False)
     held = pinned(surface, w, delta, tip)
     iterations = held.iterations
-    if not held.converged or surface.energy(held.w, delta) > surface.energy(w, delta):
+    energy = surface.energy(held.w, delta) if held.converged else np.inf
+    if energy > surface.energy(w, delta):
         return Peel(w, iterations, False)
-    w, energy, step = held.w, surface.energy(held.w, delta), max_step
+    w, step = held.w, max_step
     while step >= PEEL_SMALLEST * h:
         target = min(max(tip + direction * step, tips[0]), tips[1])
         if target <= 0.0:
