@@ -42,6 +42,37 @@ def test_uniform_disc_centre_deflection(p2):
     assert -w[0] == pytest.approx(2.0, rel=0.01)  # 2 p a / E*
 
 
+def _hertz_pressure(r):
+    return np.where(r < 1.0, 2.0 / np.pi * np.sqrt(np.clip(1.0 - r**2, 0.0, None)), 0.0)
+
+
+def test_a_restriction_to_every_node_is_the_half_space(p2):
+    whole = p2.restricted(p2.r_nodes, keep_beyond=1.0)
+    assert np.array_equal(whole.r_nodes, p2.r_nodes) and whole.dofs == p2.dofs
+    scale = np.max(np.abs(p2.surface_stiffness))
+    assert np.max(np.abs(whole.surface_stiffness - p2.surface_stiffness)) <= 1e-13 * scale
+    pressure = _hertz_pressure(p2.r_quad)
+    assert np.max(np.abs(whole.deflection(pressure) - p2.deflection(pressure))) <= 1e-12
+
+
+def test_a_restricted_surface_is_stiffer_and_converges_as_its_nodes_refine(p2):
+    """Ritz: the energy minimised over fewer displacements leaves the solid stiffer, so a load's
+    compliance energy can only fall, (Tᵀf)ᵀ C̃ (Tᵀf) ≤ fᵀ C f; and the Hertz deflection (δ = 1)
+    approaches the half-space's as the strip r < 2 keeps every 8th, 4th, 2nd node."""
+    pressure = _hertz_pressure(p2.r_quad)
+    load = p2.nodal_load(pressure)
+    energy = load @ p2.compliance @ load
+    strip = p2.r_nodes[p2.r_nodes < 2.0]
+    errors = []
+    for every in (8, 4, 2):
+        restricted = p2.restricted(strip[::every], keep_beyond=2.0)
+        reduced = restricted.nodal_load(pressure)
+        assert reduced @ restricted.compliance @ reduced <= energy * (1.0 + 1e-12)
+        w = np.interp(p2.r_nodes, restricted.r_nodes, restricted.deflection(pressure))
+        errors.append(np.max(np.abs(w - p2.deflection(pressure))))
+    assert errors[2] < errors[1] < errors[0] < 0.05
+
+
 def test_truncation_size_no_longer_matters():
     """The solid outside the truncation is restored: the centre deflection of a uniform disc
     (2 p a / E* = 2) is the same for L = 100 and L = 1e4 (uncorrected, it falls short like 1/L),

@@ -1,4 +1,5 @@
-"""Boundary-integral grids that follow the contact edge, against the uniform grid."""
+"""Grids that follow the contact edge, against the uniform grid (BEM) and the whole surface
+(FE)."""
 
 from dataclasses import replace
 
@@ -8,6 +9,7 @@ import pytest
 from fem_asperity import InputError
 from fem_asperity.closed_forms.lj import scaled_traction_slope
 from fem_asperity.path.grids import edge_grid, spring_ratio
+from fem_asperity.solver.output import state_fields
 from fem_asperity.solver.presets import discretisation
 from fem_asperity.solver.solve import solve_curve, solve_discretised
 
@@ -88,11 +90,51 @@ def test_tracked_result_says_how_it_was_computed(mu5):
     uniform, tracked = mu5
     assert "grids followed the contact edge" in tracked.message
     assert tracked.surface_nodes < 0.6 * uniform.surface_nodes and tracked.model is None
-    with pytest.raises(InputError, match="track_edge needs method 'bem'"):
-        discretisation(5.0, method="fem", track_edge=True)
     with pytest.raises(InputError, match="stable branches"):
         solve_discretised(5.0, discretisation(5.0, method="bem", track_edge=True),
                           unstable_branch=True)
+
+
+@pytest.fixture(scope="module")
+def fe_mu5():
+    """(whole surface, surface restricted to grids that follow the edge) FE `default` curves at
+    μ = 5, on the same mesh."""
+    return tuple(solve_discretised(5.0, discretisation(5.0, method="fem", track_edge=track))
+                 for track in (False, True))
+
+
+#: The error estimate of the whole FE surface at μ = 5, `default` (solve_curve, its finer
+#: discretisation's difference): the restriction must stay within it.
+FE_MU5_ESTIMATE = {"p_max": 2.0e-6, "p_off": 2.0e-6, "p_jump_after": 1.9e-6, "x_oc": 8.8e-6,
+                   "delta_jump_in": 1.3e-5, "delta_jump_out": 7.0e-5, "delta_oc": 1.5e-3,
+                   "a_c": 5.1e-4}
+
+
+@pytest.mark.slow
+def test_fe_on_grids_that_follow_the_edge_gives_the_whole_surfaces_events(fe_mu5):
+    """Each event of the restricted FE (`solids.fe.RestrictedSurface`) lies within the whole
+    surface's error estimate of the whole surface's; measured: P̄ 6e-7, δ̄o at the jumps 4e-7
+    and 1.4e-5, x̄oc 2e-7, δ̄oc 1.2e-5, ā_c 4e-6."""
+    whole, tracked = (r.events.records() for r in fe_mu5)
+    for key, estimate in FE_MU5_ESTIMATE.items():
+        assert tracked[key] == pytest.approx(whole[key], abs=estimate), key
+    assert "grids followed the contact edge" in fe_mu5[1].message
+    assert fe_mu5[1].surface_nodes < 0.6 * fe_mu5[0].surface_nodes
+    assert fe_mu5[1].dofs == fe_mu5[0].dofs
+
+
+@pytest.mark.slow
+def test_fields_of_a_state_on_a_restricted_surface(fe_mu5):
+    """The field at P̄off of the restricted FE is the half-space's response to that state's
+    pressure: on the surface it is the state's w (on the FE's nodes) to within the restriction's
+    error, 1e-3 of the largest |w| (measured 9e-4)."""
+    tracked = fe_mu5[1]
+    index = int(np.argmin(tracked.equilibrium.p))
+    mesh, nodal, _ = state_fields(tracked, index)
+    model = tracked.model
+    top = np.flatnonzero(mesh.p[1] == mesh.p[1].max())
+    w = np.interp(mesh.p[0, top], model.trace.nodes[index], model.trace.states[index])
+    assert np.max(np.abs(nodal[top, 1] - w)) <= 1e-3 * np.max(np.abs(w))
 
 
 @pytest.mark.slow

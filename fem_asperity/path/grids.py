@@ -1,4 +1,5 @@
-"""Boundary-integral grids that follow the contact edge: the BEM at large μ.
+"""Grids that follow the contact edge: the surface problem at large μ, on the boundary integral
+or on the FE half-space's surface restricted to the grid (`solids.fe.RestrictedSurface`).
 
 The cohesive zone at the contact edge is about μ^(−3/2) √(Rε) wide while the contact grows like
 μ^(1/2) √(Rε), so a grid uniformly fine enough for the edge needs n ∝ μ² nodes, beyond dense
@@ -8,7 +9,9 @@ zone opens); between them the gap stays within 0.02 ε of 1. Here the grid is un
 only within a band of each (`edge_grid`); elsewhere its elements grow geometrically, as long as
 the LJ springs of each element stay weaker than its elastic stiffness (`spring_ratio`; coarser
 elements snap on their own and give the grid spurious equilibria). Before contact (and after a
-jump out of it) the grid is the small-μ BEM's (`solids.bem.radial_grid`).
+jump out of it) the grid is the small-μ BEM's (`solids.bem.radial_grid`). On the FE each grid's
+radii are replaced by the nearest surface nodes (where the mesh is fine; every node beyond), so
+its fine bands hold every node there.
 
 `EdgeGrids.land` finds a stable state downhill in energy on the grid of its edges, moving the
 iterate to a new grid (w interpolated linearly) whenever its edges leave the current one's band
@@ -79,18 +82,23 @@ def edge_grid(edge, tip, gap, *, h, band, r_max, growth=0.1, h_inside):
 
 class EdgeGrids:
     """The surfaces of one curve: the uniform pre-contact grid and grids fine at a contact
-    radius and crack tip, each an `LJSurface` on a `BoussinesqSurface`, built on demand.
+    radius and crack tip, each an `LJSurface` on the `ElasticSurface` `elastic_on(nodes)`, built
+    on demand: by default the boundary integral on those nodes (`BoussinesqSurface`); for the FE
+    its half-space's surface restricted to them (`solids.fe.HalfSpace.restricted`), that
+    half-space being `elastic` (kept for field output; None for the boundary integral).
 
     h, band, h_inside, growth: as `edge_grid`; contact_h, contact_r: spacing and extent of the
     uniform pre-contact grid; r_max: the traction radius. Counters: `regrids` (grids built),
-    `largest_nodes`, `largest_change` and `largest_radius_change` (the largest |ΔP̄| and |Δā_c|
-    of a state moved to a new grid while on a branch: a measure of the discretisation error).
+    `largest_nodes`, `dofs` (the unknowns of the largest solid), `largest_change` and
+    `largest_radius_change` (the largest |ΔP̄| and |Δā_c| of a state moved to a new grid while
+    on a branch: a measure of the discretisation error).
     """
 
     def __init__(self, mu, *, h, band, h_inside, contact_h, contact_r, r_max, growth=0.1,
-                 radius_ratio=None):
+                 radius_ratio=None, elastic_on=BoussinesqSurface, elastic=None):
         self.mu, self.h, self.band, self.h_inside = mu, h, band, h_inside
         self.r_max, self.growth, self.radius_ratio = r_max, growth, radius_ratio
+        self.elastic_on, self.elastic, self.dofs = elastic_on, elastic, 0
         # surface → (its centre: the (ā_c, tip) of its fine bands, the edges of the state it
         # was built for)
         self._built_for = weakref.WeakKeyDictionary()
@@ -100,7 +108,9 @@ class EdgeGrids:
         self.largest_change = self.largest_radius_change = 0.0
 
     def _surface(self, nodes, centre, edges):
-        surface = LJSurface(BoussinesqSurface(nodes), self.mu, radius_ratio=self.radius_ratio)
+        elastic = self.elastic_on(nodes)
+        self.dofs = max(self.dofs, elastic.dofs)
+        surface = LJSurface(elastic, self.mu, radius_ratio=self.radius_ratio)
         self._built_for[surface] = centre, edges
         return surface
 
@@ -226,11 +236,6 @@ class EdgeGrids:
         interpolated linearly; not in equilibrium there: `land` it)."""
         return self._moved(SurfaceShape(nodes, radius_ratio=self.radius_ratio), w, delta)
 
-    @property
-    def dofs(self):
-        """Unknowns of the largest grid (the surface nodes: a boundary integral)."""
-        return self.largest_nodes
-
     def record_move(self, change, radius_change):
         """Keep the largest |ΔP̄| and |Δā_c| of a state moved to a new grid while on a branch."""
         self.largest_change = max(self.largest_change, change)
@@ -301,10 +306,13 @@ class Grids(Protocol):
     """The surfaces a path runs on, for `branches.stable_paths`: one (`FixedGrid`) or many
     built as the contact edge moves (`EdgeGrids`).
 
-    start: the `LJSurface` of the first state (far from contact). fits(surface, w, δ̄o): the
-    surface resolves the state as well as one built for it. admits(...): it still resolves it
-    (a continuation step beyond is retried shorter). land(surface, w, δ̄o, tol=...): (surface,
-    w, iterations) of the stable state downhill, on a surface that fits it.
+    start: the `LJSurface` of the first state (far from contact). elastic: the solid behind the
+    surfaces, kept for field output (the FE `HalfSpace`, or the one boundary-integral surface
+    of a fixed grid); None for boundary-integral grids that follow the edge.
+    fits(surface, w, δ̄o): the surface resolves the state as well as one built for it.
+    admits(...): it still resolves it (a continuation step beyond is retried shorter).
+    land(surface, w, δ̄o, tol=...): (surface, w, iterations) of the stable state downhill, on a
+    surface that fits it.
     record_move(ΔP̄, Δā_c): note the force and contact-radius changes of a state moved to a new
     grid. transplant(nodes, w, δ̄o): (surface, w) of a state given on other radial nodes, moved
     here. summary(): a clause for the curve's message. dofs, largest_nodes: the cost of the
@@ -312,6 +320,7 @@ class Grids(Protocol):
     """
 
     start: LJSurface
+    elastic: object
     dofs: int
     largest_nodes: int
 

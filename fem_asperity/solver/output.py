@@ -78,8 +78,12 @@ def state_fields(result, index):
     `result.equilibrium`."""
     model = result.model
     surface, half_space = model.surface, model.half_space
-    w, delta = model.trace.states[index], result.equilibrium.delta[index]
-    pressure = surface.load_factor * scaled_traction(surface.gap(w, delta))  # inf gap: 0
+    delta = result.equilibrium.delta[index]
+    # the state on the half-space's surface nodes (from a grid that followed the edge: linear
+    # between its nodes, as on that grid); the quadrature points are the half-space's on either
+    w = np.interp(half_space.r_nodes, model.trace.nodes[index], model.trace.states[index])
+    gap = delta + surface.profile - half_space.interp @ w
+    pressure = surface.load_factor * scaled_traction(gap)  # inf gap: 0
     u = half_space.displacement_field(half_space.nodal_load(pressure))
     nodal = u[half_space.basis.nodal_dofs].T
     return half_space.mesh, nodal, half_space.stress(u) / surface.load_factor

@@ -39,8 +39,9 @@ def worst_status(*statuses):
 
 @dataclass
 class Model:
-    """The solved model behind a curve (kept for field output): elastic surface, LJ surface
-    problem, trace."""
+    """The solved model behind a curve (kept for field output): the elastic solid, the LJ
+    surface problem of the first state (of every state on one fixed grid; on grids that follow
+    the edge each state's nodes are in the trace), the trace."""
 
     half_space: ElasticSurface
     surface: object

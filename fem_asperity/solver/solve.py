@@ -84,8 +84,9 @@ def _solve_traced(mu, disc, *, solid, radius_ratio, unstable_branch, spring_cons
         grids = disc.grids(mu, solid=solid, radius_ratio=radius_ratio)
         fixed = isinstance(grids, FixedGrid)
         if whole and not fixed:
-            raise InputError("grids that follow the contact edge (BEM at mu >= 6) trace stable "
-                             "branches only: no unstable_branch or spring_constant there")
+            raise InputError("grids that follow the contact edge (at large mu, MU_TRACKING) "
+                             "trace stable branches only: no unstable_branch or "
+                             "spring_constant there")
         if whole:
             solved = whole_curve_paths(grids.start, disc.trace, progress)
         else:
@@ -135,7 +136,7 @@ def _solve_traced(mu, disc, *, solid, radius_ratio, unstable_branch, spring_cons
         z_jumps=z_jumps,
         regrid_change=None if fixed else grids.largest_change,
         regrid_radius_change=None if fixed else grids.largest_radius_change,
-        model=Model(grids.elastic, grids.start, traced) if fixed else None,
+        model=None if grids.elastic is None else Model(grids.elastic, grids.start, traced),
     ), traced
 
 

@@ -24,8 +24,8 @@ from ..plumbing.revision import code_revision
 from .onset import stored_onset
 from .store import cache_dir, stored_curve, stored_json
 
-#: Tabor parameters of the refit: both regimes, on uniform BEM grids (below MU_TRACKING), where a
-#: curve is cheap. Not pinned by a test (test_refit.py fits its own μ).
+#: Tabor parameters of the refit: both regimes, on uniform BEM grids (below
+#: MU_TRACKING["bem"]), where a curve is cheap. Not pinned by a test (test_refit.py fits its own μ).
 REFIT_MU = (0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0, 1.3, 1.6, 2.0, 2.5, 3.0)
 
 
