@@ -14,13 +14,16 @@ from fem_asperity.solver.presets import (
     BEMDiscretisation,
     EdgeDiscretisation,
     FEDiscretisation,
+    FEEdgeDiscretisation,
     discretisation,
 )
 
 
-@pytest.mark.parametrize("method", ["fem", "bem"])
+@pytest.mark.parametrize("method", ["fem", "bem", "fem restricted"])
 def test_both_solids_offer_the_elastic_surface_interface(method):
-    elastic = discretisation(2.0, "draft", method=method).elastic()
+    elastic = discretisation(2.0, "draft", method=method.split()[0]).elastic()
+    if method == "fem restricted":  # every other node of the fine strip
+        elastic = elastic.restricted(elastic.r_nodes[::2], keep_beyond=4.0)
     assert isinstance(elastic, ElasticSurface)
     n = elastic.r_nodes.size
     assert elastic.compliance.shape == (n, n) and elastic.interp.shape == (elastic.r_quad.size, n)
@@ -31,10 +34,11 @@ def test_both_solids_offer_the_elastic_surface_interface(method):
     assert np.max(np.abs(product - np.eye(n))) <= 1e-15 * kappa
 
 
-@pytest.mark.parametrize("mu, method, kind", [(2.0, "fem", FixedGrid), (2.0, "bem", FixedGrid),
-                                              (8.0, "bem", EdgeGrids)])
-def test_each_discretisation_builds_grids_of_the_grids_interface(mu, method, kind):
-    grids = discretisation(mu, "draft", method=method).grids(mu)
+@pytest.mark.parametrize("mu, method, track, kind", [
+    (2.0, "fem", None, FixedGrid), (2.0, "bem", None, FixedGrid), (8.0, "bem", None, EdgeGrids),
+    (2.0, "fem", True, EdgeGrids)])
+def test_each_discretisation_builds_grids_of_the_grids_interface(mu, method, track, kind):
+    grids = discretisation(mu, "draft", method=method, track_edge=track).grids(mu)
     assert isinstance(grids, kind) and isinstance(grids, Grids)
     assert grids.start.mu == mu
     assert (grids.summary() == "") == (kind is FixedGrid)  # only moving grids have news
@@ -44,6 +48,7 @@ def test_each_discretisation_builds_grids_of_the_grids_interface(mu, method, kin
     (2.0, "fem", None, FEDiscretisation, "grading"),
     (2.0, "bem", None, BEMDiscretisation, "growth"),
     (2.0, "bem", True, EdgeDiscretisation, "growth"),
+    (5.0, "fem", None, FEEdgeDiscretisation, "grading"),
 ])
 def test_refinements_keep_the_type_and_scale_its_lengths(mu, method, track, kind,
                                                                       grading):
@@ -55,7 +60,9 @@ def test_refinements_keep_the_type_and_scale_its_lengths(mu, method, track, kind
     assert getattr(finer, grading) == getattr(fine, grading)
     assert partner.trace.turn == finer.trace.turn == fine.trace.turn / 2
     if kind is EdgeDiscretisation:
-        assert partner.h_contact == fine.h_contact / 2 and partner.band == fine.band
+        assert partner.h_contact == fine.h_contact / 2
+    if kind in (EdgeDiscretisation, FEEdgeDiscretisation):
+        assert partner.band == fine.band
 
 
 def test_the_uniform_boundary_integral_takes_a_layer_the_edge_grids_refuse_it():
@@ -63,8 +70,9 @@ def test_the_uniform_boundary_integral_takes_a_layer_the_edge_grids_refuse_it():
     uniform = discretisation(2.0, "draft", method="bem").grids(2.0, solid=layer)
     homogeneous = discretisation(2.0, "draft", method="bem").grids(2.0)
     assert not np.allclose(uniform.elastic.compliance, homogeneous.elastic.compliance)
-    with pytest.raises(InputError, match="homogeneous"):
-        discretisation(2.0, "draft", method="bem", track_edge=True).grids(2.0, solid=layer)
+    for method in ("bem", "fem"):
+        with pytest.raises(InputError, match="homogeneous"):
+            discretisation(2.0, "draft", method=method, track_edge=True).grids(2.0, solid=layer)
 
 
 def test_spd_inverse_inverts_and_refuses_an_indefinite_matrix():

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
-from scipy.sparse import coo_matrix
+from scipy.sparse import coo_matrix, diags
 from scipy.sparse.linalg import splu
 from skfem import (
     Basis,
@@ -118,21 +118,53 @@ def axisymmetric_elasticity(u, v, w):
     return (w.lam * div_u * div_v + w.shear * (2.0 * normal + eu[3] * ev[3])) * r
 
 
-def _factor_surface_last(matrix, last):
+def _factor_surface_last(matrix, last, node):
     """(order, LU, S): sparse LU of the SPD `matrix` permuted by `order`, which puts the unknowns
-    `last` last and the others in SuperLU's minimum-degree order, and the Schur complement
-    S = K_ss − K_sb K_bb⁻¹ K_bs on `last`: it is the product of the factors' trailing blocks,
-    L_ss U_ss. Cheaper than solving C = (K⁻¹)_ss column by column, and the same C to rounding."""
+    `last` last and the others in a minimum-degree order of their nodes (`_nodes_in_order`;
+    `node`: the node of each unknown), and the Schur complement S = K_ss − K_sb K_bb⁻¹ K_bs on
+    `last`: it is the product of the factors' trailing blocks, L_ss U_ss. Cheaper than solving
+    C = (K⁻¹)_ss column by column, and the same C to rounding."""
     n, m = matrix.shape[0], last.size
     rest = np.setdiff1d(np.arange(n), last)
-    inner = splu(matrix[rest][:, rest].tocsc(), permc_spec="MMD_AT_PLUS_A", **_SPD)
-    order = np.concatenate([rest[np.argsort(inner.perm_c)], last])
+    order = np.concatenate([rest[_nodes_in_order(matrix[rest][:, rest], node[rest])], last])
     lu = splu(matrix[order][:, order].tocsc(), permc_spec="NATURAL", **_SPD)
     tail = np.arange(n - m, n)
     if not (np.array_equal(lu.perm_c[tail], tail) and np.array_equal(lu.perm_r[tail], tail)):
         raise RuntimeError("the sparse factorisation moved the surface unknowns")
     schur = lu.L[n - m:, n - m:].toarray() @ lu.U[n - m:, n - m:].toarray()
     return order, lu, schur
+
+
+def _nodes_in_order(matrix, node):
+    """A fill-reducing order of the unknowns of the SPD `matrix`, those of a node together:
+    SuperLU's minimum degree on the graph of the nodes (`node`: the node of each unknown),
+    factorising its Laplacian. The unknowns of a node share their couplings, so this orders them
+    about as well as minimum degree on the unknowns themselves, at a fraction of the cost: at
+    μ = 5 `default` 0.45 s instead of a 0.95 s factorisation, 25.1M nonzeros in the factors
+    instead of 26.1M, and 2.2 s instead of about 10 on the error estimate's mesh (498k
+    unknowns). Not pinned by a test (the compliance is: test_fem_elastic.py)."""
+    nodes, index = np.unique(node, return_inverse=True)
+    coupled = matrix.tocoo()
+    graph = coo_matrix((np.ones(coupled.nnz), (index[coupled.row], index[coupled.col])),
+                       shape=(nodes.size, nodes.size)).tocsr()
+    graph.sum_duplicates()
+    graph.data[:] = -1.0
+    graph.setdiag(0.0)
+    graph.eliminate_zeros()
+    laplacian = graph + diags(1.0 - np.asarray(graph.sum(axis=1)).ravel())
+    rank = splu(laplacian.tocsc(), permc_spec="MMD_AT_PLUS_A", **_SPD).perm_c
+    return np.lexsort((np.arange(node.size), rank[index]))
+
+
+def _node_of_unknown(basis):
+    """The node of each unknown of a vector `basis`: its mesh vertex, or for quadratic elements
+    the facet whose midpoint it sits at (numbered after the vertices)."""
+    node = np.empty(basis.N, dtype=np.int64)
+    vertices = basis.nodal_dofs.shape[1]
+    node[basis.nodal_dofs] = np.arange(vertices)
+    if basis.facet_dofs.size:
+        node[basis.facet_dofs] = vertices + np.arange(basis.facet_dofs.shape[1])
+    return node
 
 
 class HalfSpace:
@@ -171,7 +203,8 @@ class HalfSpace:
         self._surface_operator(quad_order)
         self._surface_position = np.searchsorted(self.free, self.surface_dofs)
         self._order, self._lu, schur = _factor_surface_last(
-            condense(self.stiffness, D=fixed, expand=False).tocsc(), self._surface_position)
+            condense(self.stiffness, D=fixed, expand=False).tocsc(), self._surface_position,
+            _node_of_unknown(self.basis)[self.free])
         self.compliance = spd_inverse(0.5 * (schur + schur.T))
         self._far_field = self._outside_response()
         # The truncated solid is too stiff by the compliance of what lies outside it: near the
