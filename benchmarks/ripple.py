@@ -36,7 +36,7 @@ QUICK_CASES = (("bem", 3.0, (0.28, 0.45)),)
 
 def run(grid, mu, c):
     method = "fem" if grid == "fem" else "bem"
-    track = None if method == "fem" else grid == "edge"
+    track = grid == "edge"  # the FE's onset is its whole surface's
     disc = discretisation(mu, "default", method=method, track_edge=track)
     disc = replace(disc, h_surface=c * mu**-2.0)
     result = solve_discretised(mu, disc)

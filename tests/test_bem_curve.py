@@ -244,7 +244,8 @@ def test_a_failing_error_estimate_never_costs_the_result(monkeypatch):
 def test_presets_do_not_ripple(mu, method):
     """`draft`, the coarsest preset, stays below the ripple-free element size RIPPLE_FREE μ⁻²:
     before its elements were capped there it rippled at these μ (BEM: 3, 6, 22 folds; the
-    edge-following BEM at μ = 10: 5; the FE at μ = 5: 6)."""
+    edge-following BEM at μ = 10: 5; the FE at μ = 5: 6, on its whole surface; it now follows
+    the edge there)."""
     result = solve_curve(mu, method=method, accuracy="draft", error_estimate=False)
     assert result.folds == 2 and result.status == "ok" and result.accuracy == "draft"
 

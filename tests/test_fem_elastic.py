@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from fem_asperity import InputError
+from fem_asperity.path.grids import edge_grid
 from fem_asperity.solids.fe import HalfSpace, Solid, boussinesq_point_load
 from fem_asperity.solids.mesh import graded_mesh
 
@@ -53,6 +54,20 @@ def test_a_restriction_to_every_node_is_the_half_space(p2):
     assert np.max(np.abs(whole.surface_stiffness - p2.surface_stiffness)) <= 1e-13 * scale
     pressure = _hertz_pressure(p2.r_quad)
     assert np.max(np.abs(whole.deflection(pressure) - p2.deflection(pressure))) <= 1e-12
+
+
+def test_a_restriction_keeps_the_nearest_nodes_every_node_in_a_band_and_beyond(p2):
+    """Radii off the nodes go to the nearest node; a grid of `edge_grid` as fine as the nodes
+    keeps every node within its bands; every node from `keep_beyond` on is kept."""
+    r = p2.r_nodes
+    off = r[1:20] + np.array([-0.3, 0.3] * 9 + [0.1])[:19] * np.diff(r[:21])[1:20]
+    assert np.array_equal(p2.restricted(off, keep_beyond=2.0).r_nodes[1:20], r[1:20])
+    h = float(np.min(np.diff(r)))
+    nodes = edge_grid(1.0, 1.4, lambda radius: 1.0 + radius**2, h=h, band=0.2, r_max=r[-1],
+                      h_inside=0.1)
+    kept = p2.restricted(nodes, keep_beyond=2.0).r_nodes
+    banded = (np.abs(r - 1.0) <= 0.2) | (np.abs(r - 1.4) <= 0.2) | (r >= 2.0)
+    assert np.isin(r[banded], kept).all() and kept.size < r.size
 
 
 def test_a_restricted_surface_is_stiffer_and_converges_as_its_nodes_refine(p2):

@@ -49,6 +49,7 @@ def _both(mu, method, accuracy):
     (3.0, "bem", "default"),  # jumps in and out
     (1.0, "fem", "draft"),  # the FE: one fixed mesh, the finer one built anew
     pytest.param(7.0, "bem", "draft", marks=pytest.mark.slow),  # grids following the edge
+    pytest.param(5.0, "fem", "draft", marks=pytest.mark.slow),  # the FE restricted to them
 ])
 def test_events_near_each_event_are_the_whole_finer_solves(mu, method, accuracy):
     """Each finer event traced near the curve's equals the whole finer solve's to within 1e-3

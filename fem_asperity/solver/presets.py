@@ -80,7 +80,8 @@ R_FINE_MIN = 4.0
 #: per grid ('fem', 'bem' uniform, 'edge' following): the largest size found free of ripple at
 #: every μ measured (`python benchmarks/ripple.py` → results/ripple.md: the onset of h μ² lies
 #: between 0.28 and 0.30 for the uniform BEM at μ = 3.5, 0.33 and 0.375 for the edge-following
-#: grids at μ = 9, 0.45 and 0.56 for the FE at μ = 5);
+#: grids at μ = 9, 0.45 and 0.56 for the FE at μ = 5, on its whole surface); the FE on grids
+#: that follow the edge keeps its elements ('fem'), their bands holding every surface node;
 #: test_bem_curve.py::test_presets_do_not_ripple.
 RIPPLE_FREE = {"fem": 0.45, "bem": 0.28, "edge": 0.33}
 #: Presets stay this factor below the ripple-free size: it was measured at a few μ only. Not
@@ -113,7 +114,7 @@ ESTIMATE_GRADING = 2.0
 
 
 class _Resolution:
-    """What the three discretisations share: a preset `name`, the surface element length
+    """What the discretisations share: a preset `name`, the surface element length
     `h_surface` (√(Rε)), the continuation's `trace` settings, and refinement. Each subclass
     names its grading field in `_GRADING` and its other lengths in `_LENGTHS`."""
 
@@ -185,7 +186,8 @@ class FEEdgeDiscretisation(FEDiscretisation):
     """The FE half-space of `FEDiscretisation` with its surface restricted to grids that follow
     the contact edge (`path.grids.EdgeGrids` over `solids.fe.HalfSpace.restricted`): every
     surface node within `band` of the contact radius and of the crack tip, at most `h_inside`
-    inside the contact, elements growing by `growth` elsewhere, every node beyond r_fine; before
+    inside the contact, elements growing by `growth` elsewhere, every node beyond r_fine (a
+    homogeneous solid: `_homogeneous`); before
     contact every node on [0, r_contact] (all in √(Rε)): on the pre-contact grid of the BEM's
     spacing (H_MAX_BEM) x̄o at the jump-in of μ = 5, `default`, was 5.0e-4 off the whole
     surface's, 57 times its error estimate; with every node 2e-7."""
@@ -266,7 +268,10 @@ class EdgeDiscretisation(_Resolution):
 
 
 def _homogeneous(solid):
-    """Refuse a layered `solid` for grids that follow the contact edge (`InputError`)."""
+    """Refuse a layered `solid` for grids that follow the contact edge (`InputError`): on the
+    BEM a layer's correction would be rebuilt on every grid; the grids' coarse elements are
+    sized (`path.grids.spring_ratio`) against a homogeneous solid's stiffness, which a soft
+    layer lowers."""
     if solid.layer_thickness is not None:
         raise InputError("grids that follow the contact edge model a homogeneous "
                          "half-space; a layer takes one uniform grid (track_edge=False)")
@@ -288,11 +293,11 @@ def sizing_mu(mu, solid=Solid()):
 
 
 def discretisation(mu, accuracy="default", *, p_end=1.0, method="fem", track_edge=None):
-    """The discretisation (`FEDiscretisation`, `BEMDiscretisation` or `EdgeDiscretisation`) for
-    Tabor parameter `mu` (of the most compliant material: `sizing_mu`), a preset name (draft,
-    default, fine) and a method ('fem' or 'bem'). track_edge (BEM only): grids that follow the
-    contact edge (True), one uniform grid or the whole FE surface (False), or the first from
-    μ = MU_TRACKING[method] on (None)."""
+    """The discretisation (`FEDiscretisation`, `FEEdgeDiscretisation`, `BEMDiscretisation` or
+    `EdgeDiscretisation`) for Tabor parameter `mu` (of the most compliant material:
+    `sizing_mu`), a preset name (draft, default, fine) and a method ('fem' or 'bem').
+    track_edge: grids that follow the contact edge (True), one uniform grid or the whole FE
+    surface (False), or the first from μ = MU_TRACKING[method] on (None)."""
     mu = positive("mu", mu)
     if accuracy not in PRESETS:
         raise InputError(f"accuracy must be one of {', '.join(PRESETS)}; got {accuracy!r}")

@@ -71,6 +71,9 @@ class CurveResult:
         a new grid while on a branch: how much where the grids lie moves the forces (the error
         estimate of the forces includes it); None on one grid or mesh.
     regrid_radius_change: the same for ā_c (the estimate of ā_c includes it).
+    model: the `Model` behind the curve, for field output (the FE, or the BEM on one grid; None
+        for BEM grids that follow the edge). On grids that follow the edge its surface is the
+        first state's only: each state's own nodes are in its trace.
     """
 
     mu: float
