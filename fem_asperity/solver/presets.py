@@ -186,11 +186,11 @@ class FEEdgeDiscretisation(FEDiscretisation):
     """The FE half-space of `FEDiscretisation` with its surface restricted to grids that follow
     the contact edge (`path.grids.EdgeGrids` over `solids.fe.HalfSpace.restricted`): every
     surface node within `band` of the contact radius and of the crack tip, at most `h_inside`
-    inside the contact, elements growing by `growth` elsewhere, every node beyond r_fine (a
-    homogeneous solid: `_homogeneous`); before
+    inside the contact, elements growing by `growth` elsewhere, every node beyond r_fine; before
     contact every node on [0, r_contact] (all in √(Rε)): on the pre-contact grid of the BEM's
     spacing (H_MAX_BEM) x̄o at the jump-in of μ = 5, `default`, was 5.0e-4 off the whole
-    surface's, 57 times its error estimate; with every node 2e-7."""
+    surface's, 57 times its error estimate; with every node 2e-7. A homogeneous solid only
+    (`_homogeneous`)."""
 
     band: float
     r_contact: float = R_FINE_MIN
