@@ -95,6 +95,14 @@ def test_tracked_result_says_how_it_was_computed(mu5):
                           unstable_branch=True)
 
 
+def test_a_whole_curve_on_grids_that_follow_the_edge_is_refused_before_building_them(
+        monkeypatch):
+    fe = discretisation(5.0, method="fem", track_edge=True)
+    monkeypatch.setattr(type(fe), "elastic", lambda *args, **kwargs: pytest.fail("meshed"))
+    with pytest.raises(InputError, match="stable branches"):
+        solve_discretised(5.0, fe, unstable_branch=True)
+
+
 @pytest.fixture(scope="module")
 def fe_mu5():
     """(whole surface, surface restricted to grids that follow the edge) FE `default` curves at

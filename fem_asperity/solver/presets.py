@@ -116,10 +116,12 @@ ESTIMATE_GRADING = 2.0
 class _Resolution:
     """What the discretisations share: a preset `name`, the surface element length
     `h_surface` (√(Rε)), the continuation's `trace` settings, and refinement. Each subclass
-    names its grading field in `_GRADING` and its other lengths in `_LENGTHS`."""
+    names its grading field in `_GRADING` and its other lengths in `_LENGTHS`; `follows_edge`
+    says whether its grids follow the contact edge (`path.grids.EdgeGrids`)."""
 
     _GRADING = "grading"
     _LENGTHS = ()
+    follows_edge = False
 
     def _scaled(self, name, factor, grading, turn):
         lengths = {k: factor * getattr(self, k) for k in ("h_surface", *self._LENGTHS)}
@@ -196,6 +198,7 @@ class FEEdgeDiscretisation(FEDiscretisation):
     r_contact: float = R_FINE_MIN
     h_inside: float = H_INSIDE
     growth: float = BEM_GROWTH
+    follows_edge = True
 
     def grids(self, mu, *, solid=Solid(), radius_ratio=None):
         """The grids of a curve at `mu` on this discretisation's half-space (homogeneous)."""
@@ -257,6 +260,7 @@ class EdgeDiscretisation(_Resolution):
     method = "bem"
     _GRADING = "growth"
     _LENGTHS = ("h_contact",)
+    follows_edge = True
 
     def grids(self, mu, *, solid=Solid(), radius_ratio=None):
         """The grids of a curve at `mu`, built as its edges move; a homogeneous half-space (a

@@ -26,7 +26,7 @@ from ..path.whole_curve import whole_curve_paths
 from ..plumbing.checks import in_range, positive
 from ..plumbing.errors import ContinuationError, InputError
 from ..solids.fe import Solid
-from .presets import discretisation, sizing_mu
+from .presets import MU_TRACKING, discretisation, sizing_mu
 from .result import PHYSICAL_FOLDS, CurveResult, Model, worst_status
 
 #: BLAS threads while a curve is set up and traced, 1: its dense factorisations (n ≈ 100-3000)
@@ -80,13 +80,13 @@ def _solve_traced(mu, disc, *, solid, radius_ratio, unstable_branch, spring_cons
     start = time.perf_counter()
     whole = unstable_branch or spring_constant is not None
     z_jumps = None
+    if whole and disc.follows_edge:  # refused before any grid or mesh is built
+        raise InputError(f"grids that follow the contact edge (method {disc.method!r}: by "
+                         f"default from mu = {MU_TRACKING[disc.method]:g}) trace stable "
+                         "branches only: no unstable_branch or spring_constant there")
     with threadpool_limits(PATH_BLAS_THREADS, user_api="blas"):
         grids = disc.grids(mu, solid=solid, radius_ratio=radius_ratio)
         fixed = isinstance(grids, FixedGrid)
-        if whole and not fixed:
-            raise InputError("grids that follow the contact edge (at large mu, MU_TRACKING) "
-                             "trace stable branches only: no unstable_branch or "
-                             "spring_constant there")
         if whole:
             solved = whole_curve_paths(grids.start, disc.trace, progress)
         else:
