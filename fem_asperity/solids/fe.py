@@ -141,8 +141,9 @@ def _nodes_in_order(matrix, node):
     factorising its Laplacian. The unknowns of a node share their couplings, so this orders them
     about as well as minimum degree on the unknowns themselves, at a fraction of the cost: at
     μ = 5 `default` 0.45 s instead of a 0.95 s factorisation, 25.1M nonzeros in the factors
-    instead of 26.1M, and 2.2 s instead of about 10 on the error estimate's mesh (498k
-    unknowns). Not pinned by a test (the compliance is: test_fem_elastic.py)."""
+    instead of 26.1M; on the error estimate's mesh (498k unknowns) 2.2 s, then 11.5 s for the
+    one LU, where the two LUs and the trailing blocks' product took 27.0 s. Not pinned by a
+    test (the compliance is: test_fem_elastic.py)."""
     nodes, index = np.unique(node, return_inverse=True)
     coupled = matrix.tocoo()
     graph = coo_matrix((np.ones(coupled.nnz), (index[coupled.row], index[coupled.col])),

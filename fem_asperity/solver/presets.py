@@ -63,7 +63,8 @@ FE_GRADING = 0.2
 #: state to a new grid with |ΔP̄| ≤ 8.2e-6, and at μ = 5 its events agree with the whole
 #: surface's within their error estimates, test_tracking.py::
 #: test_fe_on_grids_that_follow_the_edge_gives_the_whole_surfaces_events; at μ = 4 a move
-#: changed P̄ by 4.1e-4 and at μ = 3 a landing found no state on a grid that fits it.
+#: changed P̄ by 4.1e-4 and at μ = 3 a landing found no state on a grid that fits it (those
+#: other μ measured with the pre-contact grid at H_MAX_BEM, before it held every node).
 MU_TRACKING = {"bem": 6.0, "fem": 5.0}
 BAND_COHESIVE, H_INSIDE = 8.0, 0.1
 #: Growth of boundary-integral elements per element beyond the fine zone, 0.1. Not pinned by a
