@@ -12,6 +12,7 @@ from fem_asperity.solids.bem import BoussinesqSurface, radial_grid
 from fem_asperity.solids.boussinesq import (
     _near_pairs,
     _partition,
+    _RangeMax,
     _unit_gauss,
     displacement_matrix,
     galerkin_matrix,
@@ -84,11 +85,10 @@ def test_galerkin_matrix_is_the_tested_deflection_tested_against_the_hat_functio
     rng = np.random.default_rng(2)
     inner = np.cumsum(rng.uniform(0.01, 0.05, 330))
     nodes = np.concatenate([[0.0], inner, inner[-1] + np.cumsum(0.05 * 1.1 ** np.arange(70))])
-    every = slice(0, nodes.size - 1)
+    elements = nodes.size - 1
     interpolated = sum((rows.stop - rows.start) * (cols.stop - cols.start)
-                       for rows, cols, apart in _partition(nodes[:-1], nodes[1:], every, every)
-                       if apart)
-    assert interpolated > 0.4 * every.stop ** 2 / 2
+                       for rows, cols, apart in _partition(nodes[:-1], nodes[1:]) if apart)
+    assert interpolated > 0.4 * elements ** 2 / 2
     surface = BoussinesqSurface(nodes)
     weighted = surface.interp.T.multiply(surface.weights).tocsr()
     reference = weighted @ displacement_matrix(nodes, surface.r_quad)
@@ -143,3 +143,25 @@ def test_radial_grid():
         radial_grid(h=0.1, r_fine=1.0, r_max=0.5)
     with pytest.raises(InputError):
         BoussinesqSurface([0.0, 1.0, 0.5])
+
+
+def test_partition_covers_every_element_pair_once():
+    """The blocks of `_partition`, each in both orders off the diagonal, cover every pair of
+    elements exactly once (`galerkin_matrix` fills an uninitialised array from them), on a grid
+    with fine bands between graded runs like an edge grid's; and the longest element of a run,
+    which decides separation, is the run's maximum."""
+    rng = np.random.default_rng(3)
+    steps = np.concatenate([np.full(40, 0.1) * 1.1 ** np.arange(40)[::-1], np.full(150, 0.002),
+                            rng.uniform(0.01, 0.2, 60), np.full(120, 0.002),
+                            0.002 * 1.1 ** np.arange(60)])
+    nodes = np.concatenate([[0.0], np.cumsum(steps)])
+    cover = np.zeros((steps.size, steps.size), dtype=int)
+    for rows, cols, _ in _partition(nodes[:-1], nodes[1:]):
+        cover[rows, cols] += 1
+        if rows != cols:
+            cover[cols, rows] += 1
+    assert np.all(cover == 1)
+    longest = _RangeMax(steps.tolist())
+    for start, stop in rng.integers(0, steps.size, size=(200, 2)).tolist():
+        start, stop = min(start, stop), max(start, stop) + 1
+        assert longest(start, stop) == np.max(steps[start:stop])

@@ -32,6 +32,19 @@ def test_tangent_from_the_spring_map_is_the_assembled_tangent(method):
     assert np.max(np.abs(jac - assembled)) <= 1e-6 * np.max(np.abs(assembled))
 
 
+
+@pytest.mark.parametrize("block", [(0, 40), (100, 180), (-60, None)])
+def test_tangent_block_is_the_tangents_block_entry_for_entry(traced, block):
+    """The edge block a moved linearisation refactorises is that block of the whole tangent, to
+    the bit, at a state in contact (springs of both signs), at either end and inside."""
+    surface = traced[0]
+    w, delta = _contact_state(traced)
+    slope = surface.sensitivities(w, delta)[2]
+    first, last = slice(*block).indices(surface.r_nodes.size)[:2]
+    whole = surface.tangent_matrix(slope)
+    assert np.array_equal(surface.tangent_block(slope, first, last),
+                          whole[first:last, first:last])
+
 def test_scaled_tangent_norm_is_the_largest_row_sum_of_the_scaled_tangent(traced):
     """`scaled_tangent_norm` is ‖D ∂g/∂w D‖∞ (D = diag(∂g/∂w)^(−1/2), from `tangent_diagonal`)
     at a state in contact, where springs of both signs meet at the edge, though it never forms

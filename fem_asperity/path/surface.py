@@ -188,11 +188,17 @@ class LJSurface(SurfaceShape):
         return jac
 
     def tangent_block(self, slope, first, last):
-        """The diagonal block [first:last, first:last] of `tangent_matrix(slope)`."""
-        local = self.interp[:, first:last]
-        spring = (local.T @ local.multiply(slope[:, None])).toarray()
-        return self._stiffness32[first:last, first:last] - (self.load_factor * spring).astype(
-            np.float32)
+        """The diagonal block [first:last, first:last] of `tangent_matrix(slope)`, entry for
+        entry (from the spring entries in its rows: a sparse product of the block's columns
+        took ten times as long)."""
+        n, size = self.r_nodes.size, last - first
+        span = slice(*np.searchsorted(self._spring_entries, [first * n, last * n]))
+        rows, cols = np.divmod(self._spring_entries[span], n)
+        inside = (cols >= first) & (cols < last)
+        block = self._stiffness32[first:last, first:last].copy()
+        block.reshape(-1)[(rows[inside] - first) * size + cols[inside] - first] -= (
+            self.load_factor * (self._spring_map[span] @ slope)[inside])
+        return block
 
     def tangent_diagonal(self, slope):
         """The diagonal of ∂g/∂w for the spring `slope`, in double precision (the spring

@@ -22,7 +22,6 @@ s-plane. The integral over each element of the radial grid is therefore done in 
 The rule is checked against adaptive quadrature to 1e-12 in the tests.
 """
 
-from functools import cache
 from math import gamma
 
 import numpy as np
@@ -242,43 +241,58 @@ def _chebyshev(lo, hi, targets):
     return points, values
 
 
-def _partition(a, b, rows, cols):
-    """The upper triangle (cols not before rows) of the element pairs, as (rows, cols,
-    separated) blocks of element slices: `separated` blocks lie at least their larger extent
-    and _NEAR[1] of their longest element apart (an analytic kernel there, interpolated by
-    `galerkin_matrix`); the others are at most _LEAF elements each way (the kernel in full).
-    A block apart from the diagonal is halved on its longer span, not its side of more
-    elements: on a graded grid, next to fine elements, that separates blocks sooner (a μ = 10
-    edge grid: 0.7 million kernel values in full blocks instead of 1.7)."""
-    m, n = rows.stop - rows.start, cols.stop - cols.start
-    if rows == cols:
-        if m <= _LEAF:
-            yield rows, cols, False
-            return
-        first, second = _halves(rows)
-        yield from _partition(a, b, first, first)
-        yield from _partition(a, b, first, second)
-        yield from _partition(a, b, second, second)
-        return
-    gap = a[cols.start] - b[rows.stop - 1]
-    row_extent, col_extent = b[rows.stop - 1] - a[rows.start], b[cols.stop - 1] - a[cols.start]
-    longest = max(np.max(b[rows] - a[rows]), np.max(b[cols] - a[cols]))
-    if gap >= max(row_extent, col_extent, _NEAR[1] * longest):
-        yield rows, cols, True
-    elif m <= _LEAF and n <= _LEAF:
-        yield rows, cols, False
-    elif (row_extent >= col_extent and m > 1) or n == 1:
-        for half in _halves(rows):
-            yield from _partition(a, b, half, cols)
-    else:
-        for half in _halves(cols):
-            yield from _partition(a, b, rows, half)
+def _partition(a, b):
+    """The upper triangle (columns not before rows) of the element pairs of the elements [a, b],
+    as (rows, cols, separated) blocks of element slices: `separated` blocks lie at least their
+    larger extent and _NEAR[1] of their longest element apart (an analytic kernel there,
+    interpolated by `galerkin_matrix`); the others are at most _LEAF elements each way (the
+    kernel in full). A block apart from the diagonal is halved on its longer span, not its side
+    of more elements: on a graded grid, next to fine elements, that separates blocks sooner (a
+    μ = 10 edge grid: 0.7 million kernel values in full blocks instead of 1.7). Depth first, by
+    an explicit stack of index ranges (Python numbers: numpy scalars and a generator per level
+    took twice as long)."""
+    lo, hi = a.tolist(), b.tolist()
+    longest = _RangeMax((b - a).tolist())
+    blocks, stack = [], [(0, len(lo), 0, len(lo))]
+    while stack:
+        r0, r1, c0, c1 = stack.pop()
+        m, n = r1 - r0, c1 - c0
+        if r0 == c0:
+            if m <= _LEAF:
+                blocks.append((slice(r0, r1), slice(c0, c1), False))
+            else:
+                mid = (r0 + r1) // 2
+                stack += [(mid, r1, mid, r1), (r0, mid, mid, r1), (r0, mid, r0, mid)]
+            continue
+        row_extent, col_extent = hi[r1 - 1] - lo[r0], hi[c1 - 1] - lo[c0]
+        reach = max(row_extent, col_extent,
+                    _NEAR[1] * max(longest(r0, r1), longest(c0, c1)))
+        if lo[c0] - hi[r1 - 1] >= reach:
+            blocks.append((slice(r0, r1), slice(c0, c1), True))
+        elif m <= _LEAF and n <= _LEAF:
+            blocks.append((slice(r0, r1), slice(c0, c1), False))
+        elif (row_extent >= col_extent and m > 1) or n == 1:
+            mid = (r0 + r1) // 2
+            stack += [(mid, r1, c0, c1), (r0, mid, c0, c1)]
+        else:
+            mid = (c0 + c1) // 2
+            stack += [(r0, r1, mid, c1), (r0, r1, c0, mid)]
+    return blocks
 
 
-def _halves(span):
-    """The two halves of the slice `span`."""
-    middle = (span.start + span.stop) // 2
-    return slice(span.start, middle), slice(middle, span.stop)
+class _RangeMax:
+    """max(values[start:stop]) in two lookups (a sparse table of the maxima over runs of 2^k)."""
+
+    def __init__(self, values):
+        self._levels = [values]
+        while 2 ** len(self._levels) <= len(values):
+            last, width = self._levels[-1], 2 ** (len(self._levels) - 1)
+            self._levels.append([max(x, y) for x, y in zip(last, last[width:])])
+
+    def __call__(self, start, stop):
+        level = (stop - start).bit_length() - 1
+        values = self._levels[level]
+        return max(values[start], values[stop - 2 ** level])
 
 
 def galerkin_matrix(nodes):
@@ -291,59 +305,89 @@ def galerkin_matrix(nodes):
     both orders: in full next to the diagonal, where the pairs nearer than _NEAR[1] lengths are
     then corrected to their own rules (`_near_pairs`), and through the kernel's values at
     _CHEBYSHEV × _CHEBYSHEV Chebyshev points where the elements lie apart (the kernel is
-    analytic there: `_CHEBYSHEV`)."""
+    analytic there: `_CHEBYSHEV`). The blocks fill an array of element pairs by their end
+    nodes, summed onto the nodes at the end (four times B's memory, transiently)."""
     points, weights, x = quadrature(nodes)
     a, b = nodes[:-1], nodes[1:]
-    length, n_el, per = b - a, a.size, points.shape[1]
+    n_el = a.size
     basis = np.stack([1.0 - x, x], axis=1)  # (point, end node)
+    ends = np.empty((n_el, 2, n_el, 2))  # (element, its end node, element, its end node)
+    blocks = _partition(a, b)
+    for rows, cols, _ in (block for block in blocks if not block[2]):
+        _store(ends, _full_block(points, weights, basis, rows, cols), rows, cols)
+    separated = [(rows, cols) for rows, cols, apart in blocks if apart]
+    if separated:
+        for (rows, cols), values in zip(separated, _interpolated_blocks(
+                a, b, points, weights, basis, separated)):
+            _store(ends, values, rows, cols)
     B = np.zeros((nodes.size, nodes.size))
-    near = []  # (receiving point, source element) of the near pairs
+    for i in range(2):
+        for j in range(2):
+            B[i:i + n_el, j:j + n_el] += ends[:, i, :, j]
+    return B + _near_correction(nodes, points, weights, basis)
 
-    def add(ends, rows, cols):
-        """B += `ends` (rows' elements, their end node, cols' elements, their end node), in both
-        orders unless rows is cols."""
-        for i in range(2):
-            for j in range(2):
-                B[rows.start + i:rows.stop + i, cols.start + j:cols.stop + j] += ends[:, i, :, j]
-                if rows != cols:
-                    B[cols.start + j:cols.stop + j, rows.start + i:rows.stop + i] += (
-                        ends[:, i, :, j].T)
 
-    def full(rows, cols):
-        """The hat functions' sums of the block's kernel values; notes its near pairs."""
-        m, n = rows.stop - rows.start, cols.stop - cols.start
-        with np.errstate(divide="ignore", invalid="ignore"):  # r = s: a near pair's
-            block = symmetric_kernel(points[rows].reshape(-1, 1), points[cols].reshape(1, -1))
-        if rows == cols:
-            np.fill_diagonal(block, 0.0)  # the points r = s: their pairs are corrected
-        block *= weights[rows].reshape(-1, 1) * weights[cols].reshape(1, -1)
-        ends = np.matmul(basis.T, block.reshape(m, per, n * per))  # (m, 2, n · per)
-        for receiving, source in ((rows, cols),) if rows == cols else ((rows, cols), (cols, rows)):
-            q, e = np.nonzero(_distance_ratio(points[receiving].reshape(-1, 1), a[source],
-                                              b[source], length[source]) < _NEAR[1])
-            near.append((q + receiving.start * per, e + source.start))
-        return (ends.reshape(-1, per) @ basis).reshape(m, 2, n, 2)
+def _store(ends, values, rows, cols):
+    """Put a block's sums (rows' elements, their end, cols' elements, their end) into `ends`, in
+    both orders."""
+    ends[rows, :, cols, :] = values
+    if rows != cols:
+        ends[cols, :, rows, :] = values.transpose(2, 3, 0, 1)
 
-    @cache
-    def factor(start, stop):
-        """(Chebyshev points on the elements start:stop, hat functions' weighted sums of their
+
+def _full_block(points, weights, basis, rows, cols):
+    """The hat functions' sums of the block's kernel values at the outer rule's points; the
+    pairs r = s (on a diagonal block) left out: `_near_correction` puts them in."""
+    m, n, per = rows.stop - rows.start, cols.stop - cols.start, points.shape[1]
+    with np.errstate(divide="ignore", invalid="ignore"):  # r = s: a near pair's
+        block = symmetric_kernel(points[rows].reshape(-1, 1), points[cols].reshape(1, -1))
+    if rows == cols:
+        np.fill_diagonal(block, 0.0)
+    block *= weights[rows].reshape(-1, 1) * weights[cols].reshape(1, -1)
+    summed = np.matmul(basis.T, block.reshape(m, per, n * per))  # (m, 2, n · per)
+    return (summed.reshape(-1, per) @ basis).reshape(m, 2, n, 2)
+
+
+def _interpolated_blocks(a, b, points, weights, basis, blocks):
+    """The same sums for the separated `blocks`, through the kernel at Chebyshev points of each
+    block's two spans (all blocks' kernel values in one call)."""
+    per, factors = points.shape[1], {}
+
+    def factor(span):
+        """(Chebyshev points on the span's elements, hat functions' weighted sums of their
         Lagrange polynomials, shape (2 × elements, _CHEBYSHEV))."""
-        cheb, values = _chebyshev(a[start], b[stop - 1], points[start:stop].ravel())
-        weighted = values.reshape(stop - start, per, _CHEBYSHEV) * weights[start:stop, :, None]
-        return cheb, np.matmul(basis.T, weighted).reshape(2 * (stop - start), _CHEBYSHEV)
+        key = span.start, span.stop
+        if key not in factors:
+            cheb, values = _chebyshev(a[span.start], b[span.stop - 1], points[span].ravel())
+            weighted = values.reshape(-1, per, _CHEBYSHEV) * weights[span, :, None]
+            factors[key] = cheb, np.matmul(basis.T, weighted).reshape(-1, _CHEBYSHEV)
+        return factors[key]
 
-    def interpolated(rows, cols):
-        """The same sums through the kernel at Chebyshev points of the two elements' spans."""
-        (r_cheb, left), (s_cheb, right) = factor(rows.start, rows.stop), factor(cols.start,
-                                                                                 cols.stop)
-        ends = left @ symmetric_kernel(r_cheb[:, None], s_cheb[None, :]) @ right.T
-        return ends.reshape(rows.stop - rows.start, 2, cols.stop - cols.start, 2)
+    spans = [(factor(rows), factor(cols)) for rows, cols in blocks]
+    r_cheb = np.array([left[0] for left, _ in spans])
+    s_cheb = np.array([right[0] for _, right in spans])
+    kernels = symmetric_kernel(r_cheb[:, :, None], s_cheb[:, None, :])
+    for ((_, left), (_, right)), (rows, cols), values in zip(spans, blocks, kernels):
+        yield (left @ values @ right.T).reshape(rows.stop - rows.start, 2,
+                                                cols.stop - cols.start, 2)
 
-    every = slice(0, n_el)
-    for rows, cols, separated in _partition(a, b, every, every):
-        add(interpolated(rows, cols) if separated else full(rows, cols), rows, cols)
-    q, e = (np.concatenate(column) for column in zip(*near))
-    r = points.ravel()[q]
+
+def _near_correction(nodes, points, weights, basis):
+    """What the pairs of a receiving point and a source element nearer than _NEAR[1] lengths
+    add to B by their own rules (`_near_pairs`), less what the far rule of `_full_block` added
+    for them (every such pair lies in a full block: a separated one is _NEAR[1] of its longest
+    element apart)."""
+    a, b = nodes[:-1], nodes[1:]
+    length, per = b - a, points.shape[1]
+    flat = points.ravel()
+    reach = 1.01 * _NEAR[1] * length  # candidates, then the exact test below
+    first = np.searchsorted(flat, a - reach)
+    count = np.searchsorted(flat, b + reach, side="right") - first
+    e = np.repeat(np.arange(a.size), count)
+    q = np.arange(e.size) - np.repeat(np.cumsum(count) - count - first, count)
+    near = _distance_ratio(flat[q], a[e], b[e], length[e]) < _NEAR[1]
+    q, e = q[near], e[near]
+    r = flat[q]
     i0, i1 = _near_pairs(r, q, e, nodes, _distance_ratio(r, a[e], b[e], length[e]))
     with np.errstate(divide="ignore", invalid="ignore"):
         summed = symmetric_kernel(r[:, None], points[e]) * weights[e]  # what the block added
@@ -358,5 +402,4 @@ def galerkin_matrix(nodes):
             at_row.append(receiving + node)
             at_col.append(e + end)
     values, at_row, at_col = map(np.concatenate, (values, at_row, at_col))
-    B += coo_matrix((values, (at_row, at_col)), shape=B.shape).toarray()
-    return B
+    return coo_matrix((values, (at_row, at_col)), shape=(nodes.size, nodes.size)).toarray()
