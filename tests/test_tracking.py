@@ -148,7 +148,7 @@ def test_fields_of_a_state_on_a_restricted_surface(fe_mu5):
 @pytest.mark.slow
 def test_grids_ahead_of_the_edges_build_fewer_grids_for_the_same_curve(monkeypatch):
     """Grids centred ahead of the moving edges (AHEAD of a band) against centred ones, BEM
-    `draft` at μ = 8: fewer grids (the edges cross 0.9 of a band per grid instead of 0.5), and
+    `draft` at μ = 8: fewer grids (the edges cross 1.4 bands per grid instead of 0.75), and
     P̄max, P̄off, ā_c and the jumps differ by no more than the curve's own error estimate.
     P̄off moved by 1.3e-8, more than the finer partner's difference alone (4e-9: its grids are
     placed alike): the force estimates add the curve's `regrid_change` for that, and the
@@ -183,6 +183,17 @@ def test_grids_tell_which_states_they_resolve():
                       r_max=100.0).start
     assert not grids.fits(other, apart, delta)
 
+
+
+def test_a_grid_placed_beyond_its_own_reach_is_refused():
+    """A lead `ahead` not below the reach `fit` would build grids that do not fit the states
+    they were built for (a landing would move on forever): refused up front."""
+    from fem_asperity.path.grids import EdgeGrids
+
+    for fit, ahead in ((0.5, 0.5), (0.5, 0.6), (1.2, 0.4), (0.5, -0.1)):
+        with pytest.raises(InputError, match="ahead < fit"):
+            EdgeGrids(5.0, h=0.01, band=0.07, h_inside=0.1, contact_h=0.05, contact_r=4.0,
+                      r_max=100.0, fit=fit, ahead=ahead)
 
 def test_the_next_grid_is_placed_ahead_the_way_each_edge_moved_since_the_last_was_built():
     """A grid built for the edges (5.0, 8.0) and centred ahead of both (5.04, 8.04); the state

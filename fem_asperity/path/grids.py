@@ -34,16 +34,29 @@ from .surface import TIP_GAP, LJSurface, SurfaceShape
 
 #: A landing on grids that follow the edge runs in stages (of LANDING_STAGE descent iterations,
 #: or a peel on one grid), moving to the grid of the iterate's edges when they leave its band, at
-#: most MAX_STAGES of them: a peel crosses about 0.9 of a band per grid, and the jump-out of
-#: BEM `draft` at μ = 50 peels a tip of a few √(Rε) at a band of 0.023, a few hundred grids. Not
-#: pinned by a test.
+#: most MAX_STAGES of them: a peel crosses up to (AHEAD + FIT) of a band per grid, and the
+#: jump-out of BEM `draft` at μ = 50 peels a tip of a few √(Rε) at a band of 0.023, a few
+#: hundred grids. Not pinned by a test.
 LANDING_STAGE, MAX_STAGES = 100, 2000
-#: A grid built while the edges move is centred AHEAD × band beyond them in the direction they
-#: are moving (`EdgeGrids._ahead`), so they cross (AHEAD + ½) of a band before leaving it, not
-#: ½: on a branch the edges move one way, and fewer grids are built. An edge that moved less
-#: than STILL × band since the last grid counts as still (round-off must not move its band).
-#: test_tracking.py::test_grids_ahead_of_the_edges_build_fewer_grids_for_the_same_curve.
-AHEAD, STILL = 0.4, 0.05
+#: A grid fits a state (resolves it as one built for it would: a branch stays on it, a landing
+#: ends on it) while the state's edges lie within FIT × band of the grid's centre; the fine band
+#: reaches a band either side. A grid built while the edges move is centred AHEAD × band beyond
+#: them in the direction they are moving (`EdgeGrids._ahead`), so they cross (AHEAD + FIT) of a
+#: band before leaving it, not FIT: on a branch the edges move one way, and fewer grids are
+#: built. AHEAD < FIT, or a grid would not fit the state it was built for. An edge that moved
+#: less than STILL × band since the last grid counts as still (round-off must not move its
+#: band). test_tracking.py::test_grids_ahead_of_the_edges_build_fewer_grids_for_the_same_curve.
+#: The boundary integral's (each of its grids takes ~0.1 s to build): with 0.75 and 0.65 (1.4
+#: bands per grid) instead of 0.5 and 0.4 (0.9), BEM `default` at μ = 10 built 33 grids instead
+#: of 46, and the largest force change of a move rose from 1.9e-8 to 4.2e-8 (`draft`, μ = 20:
+#: 123 grids instead of 175, 8.5e-7 instead of 1.9e-7; the force estimates add it), that of ā_c
+#: fell from 8.8e-4 to 2.4e-4 (3.7e-4 to 2.5e-4).
+FIT, AHEAD, STILL = 0.75, 0.65, 0.05
+#: The FE's (a grid restricts its surface in ~10 ms, so fewer grids save little): 0.5 and 0.4.
+#: With the boundary integral's, the FE's δ̄o at the jump-out (μ = 5, `draft`) traced near the
+#: event on a grid centred on it lay 2e-5 from the whole finer solve's, as far as the curve's;
+#: test_near_events.py::test_events_near_each_event_are_the_whole_finer_solves.
+FE_FIT, FE_AHEAD = 0.5, 0.4
 _STIFFEST_SLOPE = float(scaled_traction_slope(TIP_GAP))
 
 
@@ -88,15 +101,22 @@ class EdgeGrids:
     half-space being `elastic` (kept for field output; None for the boundary integral).
 
     h, band, h_inside, growth: as `edge_grid`; contact_h, contact_r: spacing and extent of the
-    uniform pre-contact grid; r_max: the traction radius. Counters: `regrids` (grids built),
-    `largest_nodes`, `dofs` (the unknowns of the largest solid), `largest_change` and
-    `largest_radius_change` (the largest |ΔP̄| and |Δā_c| of a state moved to a new grid while
-    on a branch: a measure of the discretisation error).
+    uniform pre-contact grid; r_max: the traction radius; fit, ahead: the reach of a grid and
+    the lead of the next, in bands (None: FIT and AHEAD; the FE's are FE_FIT and FE_AHEAD).
+    Counters: `regrids` (grids built), `largest_nodes`, `dofs` (the unknowns of the largest
+    solid), `largest_change` and `largest_radius_change` (the largest |ΔP̄| and |Δā_c| of a
+    state moved to a new grid while on a branch: a measure of the discretisation error).
     """
 
     def __init__(self, mu, *, h, band, h_inside, contact_h, contact_r, r_max, growth=0.1,
-                 radius_ratio=None, elastic_on=BoussinesqSurface, elastic=None):
+                 radius_ratio=None, elastic_on=BoussinesqSurface, elastic=None, fit=None,
+                 ahead=None):
+        fit, ahead = FIT if fit is None else fit, AHEAD if ahead is None else ahead
+        if not 0.0 <= ahead < fit <= 1.0:
+            raise InputError(f"need 0 <= ahead < fit <= 1 (in bands); got ahead={ahead}, "
+                             f"fit={fit}")
         self.mu, self.h, self.band, self.h_inside = mu, h, band, h_inside
+        self.fit, self.ahead = fit, ahead
         self.r_max, self.growth, self.radius_ratio = r_max, growth, radius_ratio
         self.elastic_on, self.elastic, self.dofs = elastic_on, elastic, 0
         # surface → (its centre: the (ā_c, tip) of its fine bands, the edges of the state it
@@ -124,8 +144,8 @@ class EdgeGrids:
     def fits(self, surface, w, delta):
         """Whether `surface` resolves the state (w, δ̄o) as a grid built for it would: without a
         crack tip (`LJSurface.crack_tip`) the pre-contact grid, else the grid of an ā_c and a tip
-        each within half a band of this state's (a surface not built here never fits)."""
-        return self._within(surface, w, delta, 0.5 * self.band)
+        each within `fit` × band of this state's (a surface not built here never fits)."""
+        return self._within(surface, w, delta, self.fit * self.band)
 
     def admits(self, surface, w, delta):
         """Whether `surface` still resolves the state (w, δ̄o), if no longer centred on it:
@@ -148,23 +168,23 @@ class EdgeGrids:
         return self.fits(surface, w, delta)
 
     def _tips(self, surface):
-        """(lowest, highest) crack tip that `surface` fits (`fits`): within half a band of the
+        """(lowest, highest) crack tip that `surface` fits (`fits`): within `fit` × band of the
         tip it was built for and beyond the band (a smaller one counts as no contact); on the
         pre-contact grid, up to the band."""
-        tip, half = self._built_for[surface][0][1], 0.5 * self.band
+        tip, reach = self._built_for[surface][0][1], self.fit * self.band
         if tip == 0.0:
             return 0.0, self.band
-        return max(tip - half, self.band) * (1.0 + 1e-12), (tip + half) * (1.0 - 1e-12)
+        return max(tip - reach, self.band) * (1.0 + 1e-12), (tip + reach) * (1.0 - 1e-12)
 
     def _grid(self, surface, w, delta, edges, centre):
         """Nodes of the grid centred at the (ā_c, tip) `centre` for the state (w, δ̄o) with its
         `edges`; the elements away from the band are sized for the gaps as if the tip had moved
-        to half a band either side of the centre (the smaller `spring_ratio` of the two), so
-        the grid holds while it fits."""
+        to `fit` × band either side of the centre (the smaller `spring_ratio` of the two), so the
+        grid holds while it fits."""
         gaps = delta + surface.node_profile - w
-        r, offset, half = surface.r_nodes, centre[1] - edges[1], 0.5 * self.band
-        smaller = np.minimum(np.interp(r - (offset - half), r, gaps),
-                             np.interp(r - (offset + half), r, gaps))
+        r, offset, reach = surface.r_nodes, centre[1] - edges[1], self.fit * self.band
+        smaller = np.minimum(np.interp(r - (offset - reach), r, gaps),
+                             np.interp(r - (offset + reach), r, gaps))
 
         def gap(radius):
             return np.interp(radius, r, smaller)
@@ -173,7 +193,7 @@ class EdgeGrids:
                          growth=self.growth, h_inside=self.h_inside)
 
     def _ahead(self, surface, edges):
-        """Where to centre the next grid: each of `edges` moved AHEAD × band further in the
+        """Where to centre the next grid: each of `edges` moved `ahead` × band further in the
         direction it moved since `surface`'s grid was built (not if it moved less than STILL ×
         band, nor from the pre-contact grid), ā_c kept within [0, tip]. From the edges of the
         state the grid was built for, not from its centre: measured from a centre placed
@@ -185,7 +205,7 @@ class EdgeGrids:
 
         def on(now, then):
             moved = now - then
-            return now + (AHEAD * self.band * np.sign(moved)
+            return now + (self.ahead * self.band * np.sign(moved)
                           if abs(moved) > STILL * self.band else 0.0)
 
         tip = on(edges[1], built[1])

@@ -12,7 +12,7 @@ from functools import partial
 import numpy as np
 
 from ..path.continuation import TraceSettings
-from ..path.grids import EdgeGrids, FixedGrid
+from ..path.grids import FE_AHEAD, FE_FIT, EdgeGrids, FixedGrid
 from ..plumbing.checks import positive
 from ..plumbing.errors import InputError
 from ..solids.bem import BoussinesqSurface, radial_grid
@@ -211,7 +211,7 @@ class FEEdgeDiscretisation(FEDiscretisation):
                          r_max=float(half_space.r_nodes[-1]),
                          growth=self.growth, radius_ratio=radius_ratio,
                          elastic_on=partial(half_space.restricted, keep_beyond=self.r_fine),
-                         elastic=half_space)
+                         elastic=half_space, fit=FE_FIT, ahead=FE_AHEAD)
 
 
 @dataclass(frozen=True)
