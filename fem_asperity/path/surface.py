@@ -190,7 +190,7 @@ class LJSurface(SurfaceShape):
     def tangent_block(self, slope, first, last):
         """The diagonal block [first:last, first:last] of `tangent_matrix(slope)`, entry for
         entry (from the spring entries in its rows: a sparse product of the block's columns
-        took ten times as long)."""
+        took three times as long)."""
         n, size = self.r_nodes.size, last - first
         span = slice(*np.searchsorted(self._spring_entries, [first * n, last * n]))
         rows, cols = np.divmod(self._spring_entries[span], n)
