@@ -10,6 +10,7 @@ from fem_asperity import InputError
 from fem_asperity.closed_forms.lj import centre_deflection, traction
 from fem_asperity.solids.bem import BoussinesqSurface, radial_grid
 from fem_asperity.solids.boussinesq import (
+    _NEAR,
     _near_pairs,
     _partition,
     _RangeMax,
@@ -149,17 +150,22 @@ def test_partition_covers_every_element_pair_once():
     """The blocks of `_partition`, each in both orders off the diagonal, cover every pair of
     elements exactly once (`galerkin_matrix` fills an uninitialised array from them), on a grid
     with fine bands between graded runs like an edge grid's; and the longest element of a run,
-    which decides separation, is the run's maximum."""
+    which decides separation, is the run's maximum; the blocks called separated are."""
     rng = np.random.default_rng(3)
     steps = np.concatenate([np.full(40, 0.1) * 1.1 ** np.arange(40)[::-1], np.full(150, 0.002),
                             rng.uniform(0.01, 0.2, 60), np.full(120, 0.002),
                             0.002 * 1.1 ** np.arange(60)])
     nodes = np.concatenate([[0.0], np.cumsum(steps)])
+    a, b = nodes[:-1], nodes[1:]
     cover = np.zeros((steps.size, steps.size), dtype=int)
-    for rows, cols, _ in _partition(nodes[:-1], nodes[1:]):
+    for rows, cols, apart in _partition(a, b):
         cover[rows, cols] += 1
         if rows != cols:
             cover[cols, rows] += 1
+        if apart:  # the kernel is analytic there: no near pair inside (`_NEAR`)
+            extents = b[rows.stop - 1] - a[rows.start], b[cols.stop - 1] - a[cols.start]
+            longest = max(np.max(steps[rows]), np.max(steps[cols]))
+            assert a[cols.start] - b[rows.stop - 1] >= max(*extents, _NEAR[1] * longest)
     assert np.all(cover == 1)
     longest = _RangeMax(steps.tolist())
     for start, stop in rng.integers(0, steps.size, size=(200, 2)).tolist():

@@ -32,18 +32,33 @@ def test_tangent_from_the_spring_map_is_the_assembled_tangent(method):
     assert np.max(np.abs(jac - assembled)) <= 1e-6 * np.max(np.abs(assembled))
 
 
-
 @pytest.mark.parametrize("block", [(0, 40), (100, 180), (-60, None)])
 def test_tangent_block_is_the_tangents_block_entry_for_entry(traced, block):
     """The edge block a moved linearisation refactorises is that block of the whole tangent, to
     the bit, at a state in contact (springs of both signs), at either end and inside."""
     surface = traced[0]
     w, delta = _contact_state(traced)
-    slope = surface.sensitivities(w, delta)[2]
+    _assert_block_is_the_tangents(surface, surface.sensitivities(w, delta)[2], block)
+
+
+def test_tangent_block_of_a_restricted_fe_surface_is_the_tangents_block():
+    """The same on the FE's surface restricted to a graded subset of its nodes (its springs
+    from an interpolation through the restriction), with random springs of both signs."""
+    half_space = discretisation(2.0, "draft", method="fem").elastic()
+    graded = 1.0 + np.cumsum(0.02 * 1.2 ** np.arange(12))
+    radii = np.concatenate([np.linspace(0.0, 1.0, 40), graded])
+    surface = LJSurface(half_space.restricted(radii, keep_beyond=3.0), 2.0)
+    slope = np.random.default_rng(1).standard_normal(surface.weights.size)
+    for block in ((0, 20), (15, 45), (-25, None)):
+        _assert_block_is_the_tangents(surface, slope, block)
+
+
+def _assert_block_is_the_tangents(surface, slope, block):
     first, last = slice(*block).indices(surface.r_nodes.size)[:2]
     whole = surface.tangent_matrix(slope)
     assert np.array_equal(surface.tangent_block(slope, first, last),
                           whole[first:last, first:last])
+
 
 def test_scaled_tangent_norm_is_the_largest_row_sum_of_the_scaled_tangent(traced):
     """`scaled_tangent_norm` is ‖D ∂g/∂w D‖∞ (D = diag(∂g/∂w)^(−1/2), from `tangent_diagonal`)

@@ -150,9 +150,10 @@ def test_grids_ahead_of_the_edges_build_fewer_grids_for_the_same_curve(monkeypat
     """Grids centred ahead of the moving edges (AHEAD of a band) against centred ones, BEM
     `draft` at μ = 8: fewer grids (the edges cross 1.4 bands per grid instead of 0.75), and
     P̄max, P̄off, ā_c and the jumps differ by no more than the curve's own error estimate.
-    P̄off moved by 1.3e-8, more than the finer partner's difference alone (4e-9: its grids are
-    placed alike): the force estimates add the curve's `regrid_change` for that, and the
-    estimate of ā_c its `regrid_radius_change`."""
+    ā_c moved by 4.8e-4, more than its estimate from the finer partner alone (1.2e-4: its grids
+    are placed alike): the estimate of ā_c adds the curve's `regrid_radius_change` for that,
+    and the force estimates its `regrid_change` (P̄off moved by 3.7e-8; at AHEAD = 0.4 and FIT =
+    0.5 it moved by 1.3e-8 against 4e-9)."""
     from fem_asperity.path import grids
 
     ahead = solve_curve(8.0, method="bem", accuracy="draft")

@@ -25,7 +25,6 @@ The rule is checked against adaptive quadrature to 1e-12 in the tests.
 from math import gamma
 
 import numpy as np
-from scipy.sparse import coo_matrix
 from scipy.special import comb, ellipkm1, roots_legendre
 
 #: Points of the Gauss-Legendre and of the logarithmic Gauss rules;
@@ -306,7 +305,7 @@ def galerkin_matrix(nodes):
     then corrected to their own rules (`_near_pairs`), and through the kernel's values at
     _CHEBYSHEV × _CHEBYSHEV Chebyshev points where the elements lie apart (the kernel is
     analytic there: `_CHEBYSHEV`). The blocks fill an array of element pairs by their end
-    nodes, summed onto the nodes at the end (four times B's memory, transiently)."""
+    nodes (four times B's memory), summed onto the nodes at the end."""
     points, weights, x = quadrature(nodes)
     a, b = nodes[:-1], nodes[1:]
     n_el = a.size
@@ -324,7 +323,9 @@ def galerkin_matrix(nodes):
     for i in range(2):
         for j in range(2):
             B[i:i + n_el, j:j + n_el] += ends[:, i, :, j]
-    return B + _near_correction(nodes, points, weights, basis)
+    del ends  # before the near pairs' arrays: a peak of about 5 B's, not 7
+    _add_near_correction(B, nodes, points, weights, basis)
+    return B
 
 
 def _store(ends, values, rows, cols):
@@ -337,7 +338,7 @@ def _store(ends, values, rows, cols):
 
 def _full_block(points, weights, basis, rows, cols):
     """The hat functions' sums of the block's kernel values at the outer rule's points; the
-    pairs r = s (on a diagonal block) left out: `_near_correction` puts them in."""
+    pairs r = s (on a diagonal block) left out: `_add_near_correction` puts them in."""
     m, n, per = rows.stop - rows.start, cols.stop - cols.start, points.shape[1]
     with np.errstate(divide="ignore", invalid="ignore"):  # r = s: a near pair's
         block = symmetric_kernel(points[rows].reshape(-1, 1), points[cols].reshape(1, -1))
@@ -372,9 +373,9 @@ def _interpolated_blocks(a, b, points, weights, basis, blocks):
                                                 cols.stop - cols.start, 2)
 
 
-def _near_correction(nodes, points, weights, basis):
-    """What the pairs of a receiving point and a source element nearer than _NEAR[1] lengths
-    add to B by their own rules (`_near_pairs`), less what the far rule of `_full_block` added
+def _add_near_correction(B, nodes, points, weights, basis):
+    """Add to B what the pairs of a receiving point and a source element nearer than _NEAR[1]
+    lengths add by their own rules (`_near_pairs`), less what the far rule of `_full_block` added
     for them (every such pair lies in a full block: a separated one is _NEAR[1] of its longest
     element apart)."""
     a, b = nodes[:-1], nodes[1:]
@@ -402,4 +403,4 @@ def _near_correction(nodes, points, weights, basis):
             at_row.append(receiving + node)
             at_col.append(e + end)
     values, at_row, at_col = map(np.concatenate, (values, at_row, at_col))
-    return coo_matrix((values, (at_row, at_col)), shape=(nodes.size, nodes.size)).toarray()
+    np.add.at(B, (at_row, at_col), values)
