@@ -193,7 +193,7 @@ class LJSurface(SurfaceShape):
         took three times as long)."""
         n, size = self.r_nodes.size, last - first
         span = slice(*np.searchsorted(self._spring_entries, [first * n, last * n]))
-        rows, cols = np.divmod(self._spring_entries[span], n)
+        rows, cols = (index[span] for index in self._spring_rows_cols)
         inside = (cols >= first) & (cols < last)
         block = self._stiffness32[first:last, first:last].copy()
         block.reshape(-1)[(rows[inside] - first) * size + cols[inside] - first] -= (
@@ -213,7 +213,7 @@ class LJSurface(SurfaceShape):
         `slope`: the stiffness's scaled absolute row sums, with the entries the springs change
         replaced."""
         inverse, n = 1.0 / scale, scale.size
-        rows, cols = np.divmod(self._spring_entries, n)
+        rows, cols = self._spring_rows_cols
         stiffness = self.stiffness.reshape(-1)[self._spring_entries]
         changed = np.abs(stiffness - self.load_factor * (self._spring_map @ slope))
         sums = self._stiffness_abs @ inverse + np.bincount(
@@ -226,9 +226,14 @@ class LJSurface(SurfaceShape):
         return np.abs(self.stiffness)
 
     @cached_property
+    def _spring_rows_cols(self):
+        """(row, column) of each spring entry (built on first use, not with every grid)."""
+        return np.divmod(self._spring_entries, self.r_nodes.size)
+
+    @cached_property
     def _spring_diagonal(self):
         """(which spring entries lie on the diagonal, their nodes)."""
-        rows, cols = np.divmod(self._spring_entries, self.r_nodes.size)
+        rows, cols = self._spring_rows_cols
         on_diagonal = np.flatnonzero(rows == cols)
         return on_diagonal, rows[on_diagonal]
 

@@ -25,6 +25,7 @@ The rule is checked against adaptive quadrature to 1e-12 in the tests.
 from math import gamma
 
 import numpy as np
+from scipy.sparse import coo_matrix
 from scipy.special import comb, ellipkm1, roots_legendre
 
 #: Points of the Gauss-Legendre and of the logarithmic Gauss rules;
@@ -312,8 +313,9 @@ def galerkin_matrix(nodes):
     basis = np.stack([1.0 - x, x], axis=1)  # (point, end node)
     ends = np.empty((n_el, 2, n_el, 2))  # (element, its end node, element, its end node)
     blocks = _partition(a, b)
-    for rows, cols, _ in (block for block in blocks if not block[2]):
-        _store(ends, _full_block(points, weights, basis, rows, cols), rows, cols)
+    for rows, cols, apart in blocks:
+        if not apart:
+            _store(ends, _full_block(points, weights, basis, rows, cols), rows, cols)
     separated = [(rows, cols) for rows, cols, apart in blocks if apart]
     if separated:
         for (rows, cols), values in zip(separated, _interpolated_blocks(
@@ -403,4 +405,4 @@ def _add_near_correction(B, nodes, points, weights, basis):
             at_row.append(receiving + node)
             at_col.append(e + end)
     values, at_row, at_col = map(np.concatenate, (values, at_row, at_col))
-    np.add.at(B, (at_row, at_col), values)
+    B += coo_matrix((values, (at_row, at_col)), shape=B.shape).toarray()
