@@ -17,6 +17,7 @@ from ..plumbing.errors import ContinuationError
 from .continuation import APPROACH, Trace, approach_fraction, follow, start_state
 from .curve import Jump, curve_from_columns
 from .grids import Grids
+from .tip import follow_tip, tip_direction
 from .whole_curve import (
     ADJACENT,
     COLUMNS,
@@ -51,8 +52,20 @@ def follow_branch(grids, surface, w, delta, heading, settings, until, on_point):
     landing): `_piece`s of the branch, moved to a new grid (`grids.land`, see `grids`) each
     time the contact edge leaves the current one's band; on a fixed grid, one piece. Where a
     move lands elsewhere (REGRID_JUMP) the branch ends in a fold there, landing = (surface, w)
-    of the jump; else landing is None."""
+    of the jump; else landing is None. A branch in contact on grids that follow the edge is
+    followed in its crack tip's radius first (`tip.follow_tip`), then, where that hands over,
+    as any branch."""
     merged = Trace()
+    direction = tip_direction(grids, surface, w, delta, heading)
+    if direction:
+        path = follow_tip(grids, surface, w, delta, direction, settings, until=until,
+                          on_point=on_point)
+        merged.extend(path.trace)
+        if path.fold is not None or (path.last is not None and until(path.trace)):
+            return merged, path.fold, path.beyond, path.surface, None
+        if path.last is not None:  # go on from its last state, which `follow` records again
+            surface, w, delta = path.last.surface, path.last.w, path.last.delta
+            merged.drop_last()
     while True:
         done = partial(_done_or_off_grid, until, grids, surface)
         traced, fold, beyond = _piece(surface, w, delta, heading, settings, done, on_point,

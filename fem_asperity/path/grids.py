@@ -221,7 +221,7 @@ class EdgeGrids:
         iterations, peeling, stalled = 0, 0.0, False
         for _ in range(MAX_STAGES):
             if not self.fits(surface, w, delta):
-                surface, w = self._moved(surface, w, delta)
+                surface, w = self.move(surface, w, delta)
             if peeling:
                 tip = surface.crack_tip(w, delta)
                 peeled = peel(surface, w, delta, peeling, h=self.h, max_step=0.5 * self.band,
@@ -233,7 +233,7 @@ class EdgeGrids:
                 # contact) the next grid would stop it again.
                 moved = surface.crack_tip(w, delta) != tip
                 if peeled.left and (moved or not stalled):
-                    surface, w = self._moved(surface, w, delta)
+                    surface, w = self.move(surface, w, delta)
                 else:
                     peeling = 0.0
                 stalled = not moved
@@ -254,7 +254,7 @@ class EdgeGrids:
         """(surface, w): the state (w, δ̄o), given on the radial `nodes` of a grid that may no
         longer exist (or another discretisation's), moved to the grid of its edges here (w
         interpolated linearly; not in equilibrium there: `land` it)."""
-        return self._moved(SurfaceShape(nodes, radius_ratio=self.radius_ratio), w, delta)
+        return self.move(SurfaceShape(nodes, radius_ratio=self.radius_ratio), w, delta)
 
     def record_move(self, change, radius_change):
         """Keep the largest |ΔP̄| and |Δā_c| of a state moved to a new grid while on a branch."""
@@ -269,9 +269,10 @@ class EdgeGrids:
                 f"most {self.largest_change:.1e} and ā_c by at most "
                 f"{self.largest_radius_change:.1e}")
 
-    def _moved(self, surface, w, delta):
+    def move(self, surface, w, delta):
         """(surface, w) of the state (w, δ̄o) moved to the grid of its edges (the pre-contact
-        grid without contact), w interpolated linearly."""
+        grid without contact), centred ahead of them as they move (`_ahead`), w interpolated
+        linearly (not in equilibrium there)."""
         edges, new = self._edges(surface, w, delta), self.start
         if edges[1] > 0.0:
             centre = self._ahead(surface, edges)

@@ -1,0 +1,73 @@
+"""Stable branches followed in the crack tip's radius (`path.tip`)."""
+
+import numpy as np
+import pytest
+
+from fem_asperity.path.continuation import correct
+from fem_asperity.path.landing import land
+from fem_asperity.path.surface import LJSurface
+from fem_asperity.path.tip import held
+from fem_asperity.solids.bem import BoussinesqSurface, radial_grid
+from fem_asperity.solver.presets import discretisation
+from fem_asperity.solver.solve import solve_curve, solve_discretised
+
+TOL = 1e-9
+
+
+@pytest.fixture(scope="module")
+def adhered():
+    """(surface, w, δ̄o): a stable adhered state at μ = 10 on a uniform boundary-integral grid,
+    its crack tip at about 5 √(Rε)."""
+    surface = LJSurface(BoussinesqSurface(radial_grid(h=0.01, r_fine=3.0, r_max=20.0)), 10.0)
+    delta = 1.0
+    touching = np.where(surface.r_nodes < 2.0, delta + surface.node_profile - 1.0, 0.0)
+    landed = land(surface, touching, delta, tol=TOL)
+    assert landed.converged and surface.crack_tip(landed.w, delta) > 1.0
+    return surface, landed.w, delta
+
+
+def test_a_held_state_is_an_equilibrium_with_its_tip_where_asked(adhered):
+    """Held 0.02 √(Rε) inside the state's own tip: the tip is there (to 1e-9), and at its δ̄o
+    the state is an equilibrium of displacement control (Newton at that δ̄o is done at once)."""
+    surface, w, delta = adhered
+    tip = surface.crack_tip(w, delta) - 0.02
+    state = held(surface, w, delta, tip, tol=TOL)
+    assert state is not None and state.delta > delta  # pulled further to peel
+    assert surface.crack_tip(state.w, state.delta) == pytest.approx(tip, abs=1e-9)
+    again = correct(surface, state.w, state.delta, np.array([0.0, 1.0, 0.0]),
+                    np.array([0.0, state.delta, 0.0]), 0.0, tol=TOL)
+    assert again is not None and again[2] == 1
+    assert np.max(np.abs(again[0] - state.w)) <= 1e-7 * np.max(np.abs(state.w))
+
+
+def test_the_rates_are_the_derivatives_of_held_states(adhered):
+    """d(x̄o, δ̄o, P̄)/d(tip) from the bordered matrix against central differences of held states
+    (step 1e-6 √(Rε)): agreement to 1e-6 relative (measured 1.4e-8; with steps of 1e-4 and 1e-5
+    the differences' truncation error, 1.5e-4 and 1.5e-6, the tip on a coarse element)."""
+    surface, w, delta = adhered
+    tip, step = surface.crack_tip(w, delta) - 0.02, 1e-6
+    state = held(surface, w, delta, tip, tol=1e-12)
+    ends = [held(surface, state.w, state.delta, tip + s, tol=1e-12) for s in (-step, step)]
+
+    def observed(s):
+        return np.array([surface.centre_gap(s.w, s.delta), s.delta, s.force])
+
+    difference = (observed(ends[1]) - observed(ends[0])) / (2.0 * step)
+    assert state.rates == pytest.approx(difference, rel=1e-6)
+    assert state.before_fold == (state.rates[1] < 0.0)
+
+
+@pytest.mark.slow
+def test_the_peel_gives_the_arc_length_paths_events(monkeypatch):
+    """BEM `draft` at μ = 8: the retraction followed in the tip against the same branch followed
+    in arc length (`continuation.follow`, the peel switched off): P̄off and the jump-out's δ̄o
+    differ by less than the curve's error estimate, in fewer Newton iterations."""
+    from fem_asperity.path import branches
+
+    peeled = solve_curve(8.0, method="bem", accuracy="draft")
+    monkeypatch.setattr(branches, "tip_direction", lambda *args: 0)
+    arc = solve_discretised(8.0, discretisation(8.0, "draft", method="bem"))
+    assert peeled.newton_iterations < arc.newton_iterations
+    a, b = peeled.events.records(), arc.events.records()
+    for key in ("p_off", "delta_jump_out"):
+        assert abs(a[key] - b[key]) <= peeled.error_estimate[key], key
