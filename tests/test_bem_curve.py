@@ -162,7 +162,7 @@ def test_a_pinned_crack_tip_gives_the_minimum_that_holds_it(whole_mu2):
     vanishing), and a `peel` towards it from either side stops within a step of it; pinned 0.1 √(Rε)
     further in, the gap there is TIP_GAP and every nearby state that keeps it (moved along
     random directions that leave the pinned gap alone) has a higher energy."""
-    from fem_asperity.path.landing import _pin, peel, pinned
+    from fem_asperity.path.landing import peel, pin_nodes, pinned
     from fem_asperity.path.surface import TIP_GAP
 
     surface, traced, stable, _, _ = whole_mu2
@@ -174,7 +174,7 @@ def test_a_pinned_crack_tip_gives_the_minimum_that_holds_it(whole_mu2):
     assert np.max(np.abs(itself.w - w)) < 1e-7
     held = pinned(surface, w, delta, tip - 0.1)
     assert held.converged and abs(held.multiplier) > 1e-4
-    nodes, weights = _pin(surface, tip - 0.1)
+    nodes, weights = pin_nodes(surface, tip - 0.1)
     gaps = delta + surface.node_profile[nodes] - held.w[nodes]
     assert weights @ gaps == pytest.approx(TIP_GAP, abs=1e-9)
     energy, rng = surface.energy(held.w, delta), np.random.default_rng(0)

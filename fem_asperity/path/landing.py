@@ -93,7 +93,7 @@ def _solve_single(factor, rhs):
     return cho_solve(factor, rhs.astype(np.float32), check_finite=False).astype(float)
 
 
-def _converged(residual, step, w, scale, tol):
+def converged(residual, step, w, scale, tol):
     """Newton's test (as `continuation.correct`): the residual ≤ tol × `scale` and the last
     increment ≤ √tol relative to w."""
     return (np.max(np.abs(residual)) <= tol * scale
@@ -141,7 +141,7 @@ def land(surface, w, delta, *, tol=1e-9, max_iterations=None):
         step += solve(-g - surface.tangent_product(slope, step) - shift * weight * step)
         if shift > 0.0:
             step += _negative_curvature(surface, slope, solve, step, g)
-        if shift == 0.0 and _converged(g, step, w, scale, tol):
+        if shift == 0.0 and converged(g, step, w, scale, tol):
             return Landing(w + step, iteration, True)
         alpha = gap_keeping_step(surface.gap(w, delta), -(surface.interp @ step))
         energy, descent = surface.energy(w, delta), float(g @ step)
@@ -170,7 +170,7 @@ class Pinned(NamedTuple):
     multiplier: float
 
 
-def _pin(surface, tip):
+def pin_nodes(surface, tip):
     """(the two nodes around the radius `tip`, their linear interpolation weights)."""
     r = surface.r_nodes
     i = int(np.clip(np.searchsorted(r, tip) - 1, 0, r.size - 2))
@@ -188,7 +188,7 @@ def pinned(surface, w, delta, tip, *, tol=PEEL_TOL, max_iterations=PEEL_NEWTON):
     the last increment ≤ √tol relative. Returns a `Pinned`; not converged where the penalised
     tangent is not positive definite (the pin leaves an unstable direction) or after
     `max_iterations`."""
-    nodes, weights = _pin(surface, tip)
+    nodes, weights = pin_nodes(surface, tip)
     held_value = weights @ (delta + surface.node_profile[nodes]) - TIP_GAP  # of eᵀw
     pin = np.zeros_like(w)
     pin[nodes] = weights
@@ -209,7 +209,7 @@ def pinned(surface, w, delta, tip, *, tol=PEEL_TOL, max_iterations=PEEL_NEWTON):
         shifted = (pin @ free - off) / (pin @ along)  # λ − ρ·off
         step = free - shifted * along
         multiplier = shifted + penalty * off
-        if _converged(g + multiplier * pin, step, w, scale, tol):
+        if converged(g + multiplier * pin, step, w, scale, tol):
             return Pinned(w + step, iteration, True, multiplier)
         w = w + gap_keeping_step(delta + surface.node_profile - w, -step) * step
         if not np.all(np.isfinite(w)):

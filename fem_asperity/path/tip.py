@@ -8,8 +8,8 @@ and 3084 Newton iterations from the jump-in's landing to the jump-out). Here the
 the parameter instead: each state holds its tip at a given radius (the node gaps, interpolated
 linearly, equal TIP_GAP there: a linear constraint, as in `landing.pinned`) with δ̄o free, and is
 predicted by moving the last state's gaps along with the tip (`translated`: a peeling front
-moves nearly unchanged), from which Newton converges in a few iterations (there: 146 points and
-482 Newton iterations; P̄off and the jump-out's δ̄o within 2e-8 of the arc length's). δ̄o has
+moves nearly unchanged), from which Newton converges in a few iterations (there: 157 points and
+516 Newton iterations; P̄off and the jump-out's δ̄o within 4e-8 of the arc length's). δ̄o has
 its fold, the jump-out, where dδ̄o/d(tip) = 0, and P̄ its extremum where dP̄/d(tip) = 0; both
 are found by Brent's method on those derivatives (an equilibrium and its rates per evaluation).
 
@@ -26,7 +26,7 @@ from scipy.optimize import brentq
 
 from .continuation import Linearisation, Trace, cholesky_in_place, correct
 from .grids import EdgeGrids
-from .landing import _pin
+from .landing import converged, pin_nodes
 from .surface import TIP_GAP, gap_keeping_step
 
 #: The first step of the tip, in bands of the grids; a step is grown by GROWTH after a point that
@@ -141,7 +141,7 @@ class _Bordered:
 
 def _constraint(surface, w, delta, tip):
     """(pin weights e over the nodes, c = eᵀ(gaps) − TIP_GAP, dc/d(tip) at fixed w, δ̄o)."""
-    nodes, weights = _pin(surface, tip)
+    nodes, weights = pin_nodes(surface, tip)
     pin = np.zeros_like(w)
     pin[nodes] = weights
     gaps = delta + surface.node_profile[nodes] - w[nodes]
@@ -162,8 +162,7 @@ def held(surface, w, delta, tip, *, tol):
         dw, dd = matrix.solve(-g, -c)
         if not (np.isfinite(dd) and np.all(np.isfinite(dw))):
             return None
-        if (np.max(np.abs(g)) <= tol * scale and abs(c) <= tol
-                and max(np.max(np.abs(dw)), abs(dd)) <= np.sqrt(tol) * (1.0 + np.max(np.abs(w)))):
+        if abs(c) <= tol and converged(g, np.append(dw, dd), w, scale, tol):
             return Held(surface, w + dw, delta + dd, tip, matrix.rates(dc_dtip), iteration)
         alpha = gap_keeping_step(surface.gap(w, delta), dd - surface.interp @ dw)
         w, delta = w + alpha * dw, delta + alpha * dd
@@ -213,10 +212,9 @@ def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point
     `on_point(trace)` after each point. Returns a `TipPath`."""
     band, tol = grids.band, settings.tol
     state = held(surface, w, delta, surface.crack_tip(w, delta), tol=tol)
-    trace, states = Trace(), []
+    trace = Trace()
 
     def record(new):
-        states.append(new)
         trace.append(new.surface, new.w, new.delta, True, new.force, new.contact,
                      new.tangent(direction))
         trace.newton_iterations += new.iterations
@@ -254,7 +252,7 @@ def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point
         if stable != new.before_fold:  # another mode than the tip's: `follow` goes on
             break
         if not stable:
-            return _fold(trace, states, new, direction, tol)
+            return _fold(trace, state, new, direction, tol)
         past_extremum = past_extremum or state.rates[2] * new.rates[2] < 0.0
         _insert_force_extremum(trace, state, new, direction, tol)
         if not grids.fits(new.surface, new.w, new.delta):
@@ -347,10 +345,9 @@ def _insert_force_extremum(trace, state, new, direction, tol):
         trace.newton_iterations += extremum.iterations
 
 
-def _fold(trace, states, beyond, direction, tol):
-    """The `TipPath` ending at the fold of δ̄o between the last stable state and `beyond` (on one
-    surface), the extremum of P̄ before it included."""
-    last = states[-1]
+def _fold(trace, last, beyond, direction, tol):
+    """The `TipPath` ending at the fold of δ̄o between the last stable state `last` and `beyond`
+    (on one surface), the extremum of P̄ before it included."""
     fold = _root(last, beyond, 1, tol)
     if fold is None:  # the last stable state stands in for it
         fold = last
