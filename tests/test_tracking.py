@@ -239,6 +239,21 @@ def test_peeled_jump_landings_on_edge_grids_land_where_the_descent_alone_does(mo
         assert a.p_after == pytest.approx(b.p_after, abs=1e-9), jump
 
 
+def test_a_branch_moved_to_the_next_grid_is_solved_there_as_the_descent_solves_it(monkeypatch):
+    """BEM `draft` at μ = 8: a branch's state moved to a new grid solved again by Newton
+    (`EdgeGrids.regrid`) against the same by `land`'s descent alone: fewer Newton iterations,
+    and the events agree to 1e-9 (measured: equal to the bit)."""
+    from fem_asperity.path import grids
+
+    newton = solve_curve(8.0, method="bem", accuracy="draft", error_estimate=False)
+    monkeypatch.setattr(grids, "correct", lambda *args, **options: None)  # regrid lands
+    descended = solve_curve(8.0, method="bem", accuracy="draft", error_estimate=False)
+    assert newton.newton_iterations < descended.newton_iterations
+    a, b = newton.events.records(), descended.events.records()
+    for key in ("p_max", "a_c", "p_off", "delta_jump_in", "delta_jump_out"):
+        assert a[key] == pytest.approx(b[key], abs=1e-9), key
+
+
 def test_predictor_moves_the_crack_tip_front_along():
     """Two states whose gap profiles are one front translated by 0.05: the prediction one step
     on (fraction 1) is that front translated again, within the window, to interpolation error

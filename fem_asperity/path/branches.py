@@ -49,7 +49,7 @@ RETRACTION_SHOWN_MAX = 0.98
 
 def follow_branch(grids, surface, w, delta, heading, settings, until, on_point):
     """(stable Trace from (w, δ) on `surface`, fold, state past the fold, surface at the end,
-    landing): `_piece`s of the branch, moved to a new grid (`grids.land`, see `grids`) each
+    landing): `_piece`s of the branch, moved to a new grid (`grids.regrid`, see `grids`) each
     time the contact edge leaves the current one's band; on a fixed grid, one piece. Where a
     move lands elsewhere (REGRID_JUMP) the branch ends in a fold there, landing = (surface, w)
     of the jump; else landing is None. A branch in contact on grids that follow the edge is
@@ -77,7 +77,7 @@ def follow_branch(grids, surface, w, delta, heading, settings, until, on_point):
         before = {c: getattr(traced, c)[-1] for c in ("x", "p", "a_c", "area")}
         traced.drop_last()  # solved again on the next grid
         merged.extend(traced)
-        surface, w, its = grids.land(surface, w, delta, tol=settings.tol)
+        surface, w, its = grids.regrid(surface, w, delta, tol=settings.tol)
         merged.newton_iterations += its
         change = abs(surface.force(w, delta) - before["p"])
         if change > REGRID_JUMP:
