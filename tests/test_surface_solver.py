@@ -329,21 +329,3 @@ def test_each_point_changing_stability_has_its_own_flag():
     for k in changes:
         fresh = Linearisation(surface, trace.states[k], trace.delta[k], row)
         assert fresh.stable == trace.stable[k]
-
-
-@pytest.mark.parametrize("softest, stable", [(1e-2, True), (-1e-2, False)])
-def test_an_lu_linearisation_moved_to_another_state_decides_that_states_flag(softest, stable):
-    """An LU linearisation (its tangent indefinite) moved to a state whose tangent is positive
-    definite says stable there, and moved to another indefinite one unstable: its own flag was
-    the state's it was factorised at (the tip path's Newton starts from predictions whose
-    tangent is indefinite and converges to stable states, BEM `draft` at μ = 20: 280 of 550
-    factorisations)."""
-    spectrum = np.linspace(1.0, 2.0, 30)
-    spectrum[0] = -0.5
-    surface = _SpringlessSurface(_rotated(spectrum, 1))
-    row = np.array([0.0, 1.0, 0.0])
-    linear = Linearisation(surface, np.zeros(30), 0.0, row)
-    assert linear._cho is None and linear.stable is False  # the premise: LU, unstable
-    spectrum[0] = softest
-    surface.jac = _rotated(spectrum, 1)
-    assert linear.moved_to(surface, np.zeros(30), 0.0, row).stable is stable

@@ -57,22 +57,6 @@ def test_the_rates_are_the_derivatives_of_held_states(adhered):
     assert state.before_fold == (state.rates[1] < 0.0)
 
 
-def test_a_state_solved_from_its_neighbours_linearisation_has_the_fresh_rates(adhered):
-    """Held 0.001 √(Rε) on from a held state, Newton reusing that state's linearisation (its
-    edge block refactorised, `HeldLinearisation.moved_to`): the same state and rates as solved
-    afresh, to 1e-6 relative (a moved linearisation's Newton solve alone, refined to 1e-2, gave
-    rates 50% off)."""
-    surface, w, delta = adhered
-    tip = surface.crack_tip(w, delta) - 0.02
-    state = held(surface, w, delta, tip, tol=TOL)
-    reused = held(surface, state.w, state.delta, tip - 0.001, tol=TOL, linear=state.linear)
-    fresh = held(surface, state.w, state.delta, tip - 0.001, tol=TOL)
-    assert reused.linear._cho._l is state.linear._cho._l  # the premise: its bulk factor kept
-    assert reused.rates == pytest.approx(fresh.rates, rel=1e-6)
-    assert reused.delta == pytest.approx(fresh.delta, rel=1e-9)
-    assert reused.linear.stable and fresh.linear.stable
-
-
 @pytest.mark.slow
 def test_the_peel_gives_the_arc_length_paths_events(monkeypatch):
     """BEM `draft` at μ = 8: the retraction followed in the tip against the same branch followed

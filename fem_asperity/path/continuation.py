@@ -267,7 +267,7 @@ class Linearisation:
         border = self._set_products(surface, row, g_delta, p_delta, slope)
         jac = surface.tangent_matrix(slope)
         self.refinements, self.moved, self.converged = 1, False, True
-        block = self._block = edge_block(surface, w, delta)
+        block = edge_block(surface, w, delta)
         self._cho = _cholesky_or_none(jac, block)
         if self._cho is None:
             self._cho = _cholesky_or_none(self._double(), block)
@@ -317,10 +317,7 @@ class Linearisation:
         entry is ≤ 0; else by the Rayleigh quotient q of the Jacobi-scaled ∂g/∂w that inverse
         iteration finds (`_softest`), if it is clearly negative (then so is the softest
         eigenvalue) or clearly positive (≥ SURE_SIGN of the scaled matrix's ‖·‖∞,
-        `LJSurface.scaled_tangent_norm`); else by a double-precision factorisation, as is an LU
-        linearisation moved here (its own flag was that of the state it was factorised at)."""
-        if self._stable is None and self._cho is None:
-            self._stable = _cholesky_or_none(self._double(), self._block) is not None
+        `LJSurface.scaled_tangent_norm`); else by a double-precision factorisation."""
         if self._stable is None:
             diagonal = self._diagonal()
             if np.min(diagonal) <= 0.0:
@@ -333,7 +330,7 @@ class Linearisation:
             elif quotient <= -ROUNDING * norm:
                 self._stable = False
             else:
-                self._stable = _cholesky_or_none(self._double(), self._block) is not None
+                self._stable = _cholesky_or_none(self._double(), self._cho.block) is not None
         return self._stable
 
     def _softest(self, scale):
@@ -357,9 +354,10 @@ class Linearisation:
         moved = copy(self)
         g_delta, p_delta, slope = surface.sensitivities(w, delta)
         border = moved._set_products(surface, row, g_delta, p_delta, slope)
-        moved.refinements, moved.moved, moved._stable = MOVED_REFINEMENTS, True, None
+        moved.refinements, moved.moved = MOVED_REFINEMENTS, True
         if self._cho is None:
             return moved
+        moved._stable = None
         first, last = self._cho.block
         quarter = (last - first) // 4
         lowest = first + quarter if first > 0 else 0
@@ -373,18 +371,16 @@ class Linearisation:
             return None
         return moved if moved._eliminate(border) else None
 
-    def solve(self, rhs, *, accept=ACCEPT, refinements=None):
-        """Solution (dw, dδ) of the bordered system for the right-hand side (n + 1,), refined
-        `refinements` times (None: this linearisation's own count) or until a correction is at
-        most `accept` of the solution (`converged` says whether one was)."""
+    def solve(self, rhs):
+        """Solution (dw, dδ) of the bordered system for the right-hand side (n + 1,)."""
         step = self._solve_factored(rhs)
-        for _ in range(self.refinements if refinements is None else refinements):
+        for _ in range(self.refinements):
             dw, dd = step[:-1], step[-1]
             product = np.append(self._jac_product(dw) + dd * self._g_delta,
                                 self._border_row @ step)
             correction = self._solve_factored(rhs - product)
             step += correction
-            self.converged = np.max(np.abs(correction)) <= accept * np.max(np.abs(step))
+            self.converged = np.max(np.abs(correction)) <= ACCEPT * np.max(np.abs(step))
             if self.converged:
                 break
         return step[:-1], step[-1]

@@ -9,10 +9,7 @@ the parameter instead: each state holds its tip at a given radius (the node gaps
 linearly, equal TIP_GAP there: a linear constraint, as in `landing.pinned`) with δ̄o free, and is
 predicted by moving the last state's gaps along with the tip (`translated`: a peeling front
 moves nearly unchanged), from which Newton converges in a few iterations (there: 157 points and
-516 Newton iterations; P̄off and the jump-out's δ̄o within 4e-8 of the arc length's), each
-reusing the last linearisation, the state's before or the iterate's, with its edge block
-refactorised (`HeldLinearisation`, as `continuation.correct` does), which also decides the
-state's stability. δ̄o has
+516 Newton iterations; P̄off and the jump-out's δ̄o within 4e-8 of the arc length's). δ̄o has
 its fold, the jump-out, where dδ̄o/d(tip) = 0, and P̄ its extremum where dP̄/d(tip) = 0; both
 are found by Brent's method on those derivatives (an equilibrium and its rates per evaluation).
 
@@ -24,9 +21,10 @@ again, its tip held, on the grid of its edges, and the change of P̄ recorded (`
 from typing import NamedTuple
 
 import numpy as np
+from scipy.linalg import LinAlgError, cho_solve, lu_factor, lu_solve
 from scipy.optimize import brentq
 
-from .continuation import Linearisation, Trace, correct
+from .continuation import Linearisation, Trace, cholesky_in_place, correct
 from .grids import EdgeGrids
 from .landing import converged, pin_nodes
 from .surface import TIP_GAP, gap_keeping_step
@@ -50,14 +48,8 @@ END = 3.0
 #: A step's change of (x̄o, δ̄o, P̄) may differ from its prediction by the tip's rates by at most
 #: ALONG of the prediction (`_along`), or it is retried shorter. Not pinned by a test.
 ALONG = 0.5
-#: The rates' solve is refined until a correction is at most RATES_ACCEPT of it, at most
-#: RATES_REFINEMENTS times, else (from a moved linearisation) solved again on a fresh one: Brent
-#: finds the fold and P̄'s extremum as roots of the rates, so their error moves those events
-#: (a moved linearisation's Newton solve, refined to continuation.ACCEPT = 1e-2, gave rates
-#: 50% off); test_tip.py::test_the_rates_are_the_derivatives_of_held_states.
-RATES_ACCEPT, RATES_REFINEMENTS = 1e-10, 8
-#: The row of (x̄o, δ̄o, P̄) that holds δ̄o: `_moved` corrects a state at its δ̄o with it, and a
-#: `HeldLinearisation` sets up its observables' gradients (the rates) through it.
+#: The border of the `Linearisation` that decides a state's stability: δ̄o (any regular border
+#: gives the same flag, which is that of ∂g/∂w).
 _DELTA_ROW = np.array([0.0, 1.0, 0.0])
 #: Brent's tolerance on the tip's radius of an extremum of P̄ or δ̄o (√(Rε)): the values there are
 #: quadratic in its error. Not pinned by a test.
@@ -66,8 +58,7 @@ XTOL = 1e-9
 
 class Held(NamedTuple):
     """An equilibrium (w, δ̄o) with its crack tip held at `tip`, on `surface`: its force, contact,
-    the derivatives d(x̄o, δ̄o, P̄)/d(tip), the Newton iterations it took and the linearisation
-    of its last one (`HeldLinearisation`, for the next state's Newton and its stability)."""
+    the derivatives d(x̄o, δ̄o, P̄)/d(tip) and the Newton iterations it took."""
 
     surface: object
     w: np.ndarray
@@ -75,7 +66,6 @@ class Held(NamedTuple):
     tip: float
     rates: np.ndarray
     iterations: int
-    linear: object
 
     @property
     def force(self):
@@ -101,24 +91,52 @@ class Held(NamedTuple):
         return direction * self.rates / np.linalg.norm(self.rates)
 
 
-class HeldLinearisation(Linearisation):
+class _Bordered:
     """The Newton matrix [[∂g/∂w, ∂g/∂δ], [−eᵀ, 1]] of a held state (e: the pin's weights on its
-    two nodes, given in place of `Linearisation`'s row): factorised, refined, moved to a nearby
-    state with its bulk kept and its stability decided as `Linearisation`'s (the flag is that
-    of ∂g/∂w, whatever the border)."""
+    two nodes), solved by the single-precision Cholesky factor of ∂g/∂w and elimination of the
+    border, refined once against the double-precision product; by double-precision LU where
+    ∂g/∂w is not positive definite (past the fold)."""
 
-    def _set_products(self, surface, pin, g_delta, p_delta, slope):
-        super()._set_products(surface, _DELTA_ROW, g_delta, p_delta, slope)
-        self._border_row = np.append(-pin, 1.0)
-        return self._border_row
+    def __init__(self, surface, w, delta, pin):
+        self.g_delta, self.p_delta, slope = surface.sensitivities(w, delta)
+        self.pin, n = pin, w.size
+        self._product = lambda x: surface.tangent_product(slope, x)
+        self.load_factor = surface.load_factor
+        jac = surface.tangent_matrix(slope)
+        try:
+            self._cho, self._lu = cholesky_in_place(jac), None
+            self._b = self._solve_j(self.g_delta)
+        except LinAlgError:
+            matrix = np.empty((n + 1, n + 1))
+            matrix[:n, :n] = surface.tangent_matrix(slope, np.float64)
+            matrix[:n, n], matrix[n, :n], matrix[n, n] = self.g_delta, -pin, 1.0
+            self._cho, self._lu = None, lu_factor(matrix, overwrite_a=True, check_finite=False)
+
+    def _solve_j(self, rhs):
+        return cho_solve(self._cho, rhs.astype(np.float32), check_finite=False).astype(float)
+
+    def _solve_factored(self, rhs_w, rhs_c):
+        if self._lu is not None:
+            step = lu_solve(self._lu, np.append(rhs_w, rhs_c), check_finite=False)
+            return step[:-1], step[-1]
+        a = self._solve_j(rhs_w)
+        dd = (rhs_c + self.pin @ a) / (1.0 + self.pin @ self._b)
+        return a - dd * self._b, dd
+
+    def solve(self, rhs_w, rhs_c):
+        """(dw, dδ) with ∂g/∂w dw + ∂g/∂δ dδ = rhs_w and −eᵀdw + dδ = rhs_c."""
+        dw, dd = self._solve_factored(rhs_w, rhs_c)
+        if self._lu is None:
+            fw, fc = self._solve_factored(rhs_w - self._product(dw) - dd * self.g_delta,
+                                          rhs_c + self.pin @ dw - dd)
+            dw, dd = dw + fw, dd + fc
+        return dw, dd
 
     def rates(self, dc_dtip):
-        """(d(x̄o, δ̄o, P̄)/d(tip) along the held equilibria, the constraint's own rate dc_dtip;
-        whether its solve was refined to RATES_ACCEPT within RATES_REFINEMENTS)."""
-        rhs = np.zeros(self.n + 1)
-        rhs[-1] = -dc_dtip
-        step = self.solve(rhs, accept=RATES_ACCEPT, refinements=RATES_REFINEMENTS)
-        return self.gradients @ np.append(*step), self.converged
+        """d(x̄o, δ̄o, P̄)/d(tip) along the held equilibria, the constraint's own rate dc_dtip."""
+        dw, dd = self.solve(np.zeros_like(self.pin), -dc_dtip)
+        return np.array([dd - dw[0], dd, -(self.g_delta @ dw) / self.load_factor
+                         + self.p_delta * dd])
 
 
 def _constraint(surface, w, delta, tip):
@@ -131,34 +149,21 @@ def _constraint(surface, w, delta, tip):
     return pin, float(weights @ gaps) - TIP_GAP, slope
 
 
-def held(surface, w, delta, tip, *, tol, linear=None):
+def held(surface, w, delta, tip, *, tol):
     """The equilibrium with its crack tip at `tip` (√(Rε)) near (w, δ̄o): Newton on (w, δ̄o), the
     gaps kept positive (`gap_keeping_step`), converged as `continuation.correct` (residual ≤ tol
-    relative, last increment ≤ √tol relative), each iteration reusing the last linearisation
-    (or `linear`, a nearby state's) with its edge block refactorised where that solves as a
-    fresh one would (`Linearisation.moved_to`); a `Held`, or None after MAX_NEWTON
-    iterations."""
+    relative, last increment ≤ √tol relative); a `Held`, or None after MAX_NEWTON iterations."""
     w, delta = w.copy(), float(delta)
     scale = 1.0 + np.max(np.abs(surface.stiffness @ w))
     for iteration in range(1, MAX_NEWTON + 1):
         g = surface.residual(w, delta)
         pin, c, dc_dtip = _constraint(surface, w, delta, tip)
-        rhs = -np.append(g, c)
-        if linear is not None:
-            linear = linear.moved_to(surface, w, delta, pin)
-        if linear is not None:
-            dw, dd = linear.solve(rhs)
-        if linear is None or not linear.converged:
-            linear = HeldLinearisation(surface, w, delta, pin)
-            dw, dd = linear.solve(rhs)
+        matrix = _Bordered(surface, w, delta, pin)
+        dw, dd = matrix.solve(-g, -c)
         if not (np.isfinite(dd) and np.all(np.isfinite(dw))):
             return None
         if abs(c) <= tol and converged(g, np.append(dw, dd), w, scale, tol):
-            rates, accurate = linear.rates(dc_dtip)
-            if not accurate and linear.moved:
-                linear = HeldLinearisation(surface, w, delta, pin)
-                rates = linear.rates(dc_dtip)[0]
-            return Held(surface, w + dw, delta + dd, tip, rates, iteration, linear)
+            return Held(surface, w + dw, delta + dd, tip, matrix.rates(dc_dtip), iteration)
         alpha = gap_keeping_step(surface.gap(w, delta), dd - surface.interp @ dw)
         w, delta = w + alpha * dw, delta + alpha * dd
     return None
@@ -170,7 +175,7 @@ def _from(state, tip, tol):
     shift = tip - state.tip
     delta = state.delta + state.rates[1] * shift
     w = state.surface.translated(state.w, state.delta, shift, delta)
-    return held(state.surface, w, delta, tip, tol=tol, linear=state.linear)
+    return held(state.surface, w, delta, tip, tol=tol)
 
 
 class TipPath(NamedTuple):
@@ -189,11 +194,9 @@ def tip_direction(grids, surface, w, delta, heading):
     """How the crack tip moves along the stable branch from (w, δ̄o) with the `heading` in
     (x̄o, δ̄o, P̄), where the branch is followed in the tip: −1, receding, on a retraction (δ̄o
     rising) on grids that follow the edge with a crack tip beyond END bands; else 0. Not the
-    approach after a jump-in: followed in the tip (BEM `draft`, μ = 8) its grid moves changed
-    ā_c by at most 2.8e-4 against 4.7e-4 under `continuation.follow`, and the estimate of ā_c
-    at P̄max (which adds the largest) no longer covered how far grids placed otherwise put it
-    (4.8e-4; test_tracking.py::test_grids_ahead_of_the_edges_build_fewer_grids_for_the_same_
-    curve); at μ = 20 it took 25.3 s instead of 30.2 s."""
+    approach after a jump-in: there the finer discretisation of the error estimate, followed in
+    the tip, found P̄max at an end of its window (BEM `draft`, μ = 8: no estimate of P̄max,
+    δ̄oc and ā_c), not yet resolved."""
     if not (heading[1] > 0.0 and isinstance(grids, EdgeGrids)
             and surface.crack_tip(w, delta) > END * grids.band):
         return 0
@@ -211,9 +214,8 @@ def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point
     state = held(surface, w, delta, surface.crack_tip(w, delta), tol=tol)
     trace = Trace()
 
-    def record(new, exact=None):
-        at = (new.surface, new.w, new.delta) if exact is None else exact
-        trace.append(*at, True, at[0].force(*at[1:]), at[0].contact(*at[1:]),
+    def record(new):
+        trace.append(new.surface, new.w, new.delta, True, new.force, new.contact,
                      new.tangent(direction))
         trace.newton_iterations += new.iterations
         if on_point is not None:
@@ -221,7 +223,7 @@ def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point
 
     if state is None or not (state.before_fold and _stable(state)):
         return TipPath(trace, None, None, surface, None)
-    record(state, exact=(surface, w, delta))  # the start to the bit: a jump's landing
+    record(state)
     step, past_extremum = FIRST_STEP * band, False
     while not until(trace):
         target = state.tip + direction * step
@@ -277,10 +279,10 @@ def _along(state, new):
 
 def _stable(state):
     """Whether the held `state` is stable under δ̄o control, decided as `follow` decides it
-    (`continuation.Linearisation.stable`, on its last Newton iteration's linearisation): where
-    it is not although δ̄o still falls as the tip advances, another mode than the tip's has set
-    in and `follow` goes on (not seen in the runs measured)."""
-    return state.linear.stable
+    (`continuation.Linearisation.stable`): where it is not although δ̄o still falls as the tip
+    advances, another mode than the tip's has set in and `follow` goes on (not seen in the runs
+    measured; the check costs a factorisation per point)."""
+    return Linearisation(state.surface, state.w, state.delta, _DELTA_ROW).stable
 
 
 def _moved(grids, state, tol, *, record=True):
