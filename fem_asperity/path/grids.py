@@ -334,7 +334,8 @@ class FixedGrid:
         return surface, landed.w, landed.iterations
 
     def regrid(self, surface, w, delta, *, tol=1e-9):
-        """Never called: a state never leaves a fixed grid."""
+        """`land` (a state never leaves a fixed grid, so this is not called)."""
+        return self.land(surface, w, delta, tol=tol)
 
     def record_move(self, change, radius_change):
         """Never called: a state never leaves a fixed grid."""
