@@ -246,7 +246,7 @@ def test_a_branch_moved_to_the_next_grid_is_solved_there_as_the_descent_solves_i
     from fem_asperity.path import grids
 
     newton = solve_curve(8.0, method="bem", accuracy="draft", error_estimate=False)
-    monkeypatch.setattr(grids, "correct", lambda *args, **options: None)  # regrid lands
+    monkeypatch.setattr(grids, "correct_at_delta", lambda *args, **options: None)  # regrid lands
     descended = solve_curve(8.0, method="bem", accuracy="draft", error_estimate=False)
     assert newton.newton_iterations < descended.newton_iterations
     a, b = newton.events.records(), descended.events.records()

@@ -82,6 +82,9 @@ NEWTON_FAILURE_FACTOR, FAILED_CAP, CAP_RELAXATION = 0.5, 0.7, 1.5
 INADMISSIBLE_RATIO = 2.0
 #: Heading in (x̄o, δ̄o, P̄) of an approach from far away (gap and δ̄o decreasing).
 APPROACH = np.array([-1.0, -1.0, 0.0])
+#: The row of (x̄o, δ̄o, P̄) that holds δ̄o (`correct_at_delta`; any regular border gives the
+#: same stability flag, that of ∂g/∂w).
+DELTA_ROW = np.array([0.0, 1.0, 0.0])
 
 
 @dataclass(frozen=True)
@@ -450,6 +453,12 @@ def correct(surface, w, delta, direction, anchor, ds, *, tol=1e-9, max_newton=10
         if patience is not None and slow >= patience:
             return None
     return None
+
+
+def correct_at_delta(surface, w, delta, *, tol=1e-9):
+    """`correct` holding δ̄o at `delta` (from w, which need not be there): (w, δ, iterations,
+    linearisation) of the equilibrium at that δ̄o, or None."""
+    return correct(surface, w, delta, DELTA_ROW, np.array([0.0, delta, 0.0]), 0.0, tol=tol)
 
 
 def _predict(surface, trace_so_far, tangent, ds, front=None):

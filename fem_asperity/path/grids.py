@@ -30,7 +30,7 @@ import numpy as np
 from ..closed_forms.lj import scaled_traction_slope
 from ..plumbing.errors import ContinuationError, InputError
 from ..solids.bem import BoussinesqSurface, radial_grid
-from .continuation import correct
+from .continuation import correct_at_delta
 from .landing import land, peel
 from .surface import TIP_GAP, LJSurface, SurfaceShape
 
@@ -60,8 +60,6 @@ FIT, AHEAD, STILL = 0.75, 0.65, 0.05
 #: test_near_events.py::test_events_near_each_event_are_the_whole_finer_solves.
 FE_FIT, FE_AHEAD = 0.5, 0.4
 _STIFFEST_SLOPE = float(scaled_traction_slope(TIP_GAP))
-#: The row of (x̄o, δ̄o, P̄) that `continuation.correct` holds to solve at a given δ̄o.
-_DELTA_ROW = np.array([0.0, 1.0, 0.0])
 
 
 def spring_ratio(gap):
@@ -257,13 +255,13 @@ class EdgeGrids:
     def regrid(self, surface, w, delta, *, tol=1e-9):
         """(surface, w, Newton iterations): the equilibrium (w, δ̄o) of a branch, which
         `surface` no longer fits, solved again on the grid of its edges: by Newton at its δ̄o
-        (`continuation.correct`) from w interpolated there, where that converges to a stable
-        state the grid fits (a few iterations), else by `land` (BEM `draft`, μ = 35: all 128
+        (`continuation.correct_at_delta`) from w interpolated there, where that converges to a
+        stable state the grid fits (a few iterations), else by `land` (BEM `draft`, μ = 35: all 128
         moves by Newton, 397 iterations where `land`'s descent took about 1500; 186.8 → 171.5 s,
         the same events and moves to the bit)."""
         if not self.fits(surface, w, delta):
             surface, w = self.move(surface, w, delta)
-        solved = correct(surface, w, delta, _DELTA_ROW, np.array([0.0, delta, 0.0]), 0.0, tol=tol)
+        solved = correct_at_delta(surface, w, delta, tol=tol)
         if solved is not None and solved[3].stable and self.fits(surface, solved[0], delta):
             return surface, solved[0], solved[2]
         surface, w, iterations = self.land(surface, w, delta, tol=tol)
@@ -356,8 +354,9 @@ class Grids(Protocol):
     fits(surface, w, δ̄o): the surface resolves the state as well as one built for it.
     admits(...): it still resolves it (a continuation step beyond is retried shorter).
     land(surface, w, δ̄o, tol=...): (surface, w, iterations) of the stable state downhill, on a
-    surface that fits it. regrid(surface, w, δ̄o, tol=...): the same for a branch's
-    equilibrium that `surface` no longer fits.
+    surface that fits it. regrid(surface, w, δ̄o, tol=...): (surface, w, iterations) of a
+    branch's equilibrium that `surface` no longer fits, solved again on one that fits it (by
+    Newton where it can: stable, not necessarily downhill).
     record_move(ΔP̄, Δā_c): note the force and contact-radius changes of a state moved to a new
     grid. transplant(nodes, w, δ̄o): (surface, w) of a state given on other radial nodes, moved
     here. summary(): a clause for the curve's message. dofs, largest_nodes: the cost of the

@@ -24,7 +24,7 @@ import numpy as np
 from scipy.linalg import LinAlgError, cho_solve, lu_factor, lu_solve
 from scipy.optimize import brentq
 
-from .continuation import Linearisation, Trace, cholesky_in_place, correct
+from .continuation import DELTA_ROW, Linearisation, Trace, cholesky_in_place, correct
 from .grids import EdgeGrids
 from .landing import converged, pin_nodes
 from .surface import TIP_GAP, gap_keeping_step
@@ -48,9 +48,6 @@ END = 3.0
 #: A step's change of (x̄o, δ̄o, P̄) may differ from its prediction by the tip's rates by at most
 #: ALONG of the prediction (`_along`), or it is retried shorter. Not pinned by a test.
 ALONG = 0.5
-#: The border of the `Linearisation` that decides a state's stability: δ̄o (any regular border
-#: gives the same flag, which is that of ∂g/∂w).
-_DELTA_ROW = np.array([0.0, 1.0, 0.0])
 #: Brent's tolerance on the tip's radius of an extremum of P̄ or δ̄o (√(Rε)): the values there are
 #: quadratic in its error. Not pinned by a test.
 XTOL = 1e-9
@@ -282,7 +279,7 @@ def _stable(state):
     (`continuation.Linearisation.stable`): where it is not although δ̄o still falls as the tip
     advances, another mode than the tip's has set in and `follow` goes on (not seen in the runs
     measured; the check costs a factorisation per point)."""
-    return Linearisation(state.surface, state.w, state.delta, _DELTA_ROW).stable
+    return Linearisation(state.surface, state.w, state.delta, DELTA_ROW).stable
 
 
 def _moved(grids, state, tol, *, record=True):
@@ -298,7 +295,7 @@ def _moved(grids, state, tol, *, record=True):
     surface, w = grids.move(state.surface, state.w, state.delta)
     moved = held(surface, w, state.delta, state.tip, tol=tol)
     if moved is not None and record:
-        at_delta = correct(surface, moved.w, moved.delta, _DELTA_ROW,
+        at_delta = correct(surface, moved.w, moved.delta, DELTA_ROW,
                            np.array([0.0, state.delta, 0.0]), 0.0, tol=tol)
         force = moved.force if at_delta is None else surface.force(at_delta[0], state.delta)
         grids.record_move(abs(force - state.force), 0.0)
