@@ -257,8 +257,9 @@ class EdgeGrids:
         `surface` no longer fits, solved again on the grid of its edges: by Newton at its δ̄o
         (`continuation.correct_at_delta`) from w interpolated there, where that converges to a
         stable state the grid fits (a few iterations), else by `land` (BEM `draft`, μ = 35: all 128
-        moves by Newton, 397 iterations where `land`'s descent took about 1500; 186.8 → 171.5 s,
-        the same events and moves to the bit)."""
+        moves by Newton, 397 iterations where `land`'s descent took about 1500, the same events
+        and moves to the bit; test_tracking.py::test_a_branch_moved_to_the_next_grid_is_solved_
+        there_as_the_descent_solves_it)."""
         if not self.fits(surface, w, delta):
             surface, w = self.move(surface, w, delta)
         solved = correct_at_delta(surface, w, delta, tol=tol)
