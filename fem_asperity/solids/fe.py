@@ -176,9 +176,10 @@ class HalfSpace:
       r_nodes: radii of the surface unknowns (sorted), in √(Rε).
       r_quad, weights: surface quadrature points and weights (r included), in √(Rε) and √(Rε)².
       interp: sparse (n_quad × n_nodes) map from surface values w to w at the quadrature points.
-      compliance: dense C (n_nodes × n_nodes): w = −C·load for the normal nodal loads
-        load = interpᵀ(weights·p) with p > 0 pressing into the solid (E* = 1 units).
-      surface_stiffness: C⁻¹, built on first use.
+      compliance: dense C (n_nodes × n_nodes, built on first use): w = −C·load for the normal
+        nodal loads load = interpᵀ(weights·p) with p > 0 pressing into the solid (E* = 1
+        units).
+      surface_stiffness: C⁻¹.
       dofs: number of displacement unknowns (after the boundary conditions).
     """
 
@@ -206,16 +207,19 @@ class HalfSpace:
         self._order, self._lu, schur = _factor_surface_last(
             condense(self.stiffness, D=fixed, expand=False).tocsc(), self._surface_position,
             _node_of_unknown(self.basis)[self.free])
-        self.compliance = spd_inverse(0.5 * (schur + schur.T))
         self._far_field = self._outside_response()
         # The truncated solid is too stiff by the compliance of what lies outside it: near the
-        # axis (r ≪ size) that is a uniform sink of the whole surface, per unit load sum.
-        self.compliance -= self._far_field[self.surface_dofs[0]]
+        # axis (r ≪ size) that is a uniform sink k of the whole surface per unit load sum, so
+        # C = S⁻¹ + k 11ᵀ (S: the truncated solid's surface stiffness, its Schur complement).
+        self._truncated = 0.5 * (schur + schur.T)
+        self._outside = -float(self._far_field[self.surface_dofs[0]])
+        self.surface_stiffness = _with_outside(self._truncated, self._outside)
 
     @cached_property
-    def surface_stiffness(self):
-        """C⁻¹: the surface nodal loads per unit upward displacement, dense."""
-        return spd_inverse(self.compliance)
+    def compliance(self):
+        """C: the upward surface displacement per unit surface nodal load, dense (built on
+        first use: the surface problem needs only its inverse, `surface_stiffness`)."""
+        return spd_inverse(self._truncated) + self._outside
 
     def _outside_response(self):
         """Displacement field (all DOFs) per unit load sum ∫p r dr at the axis, of the solid held
@@ -342,6 +346,15 @@ class RestrictedSurface:
         """Upward surface displacement at `r_nodes` of the restricted solid under a pressure p
         (> 0 into the solid)."""
         return -self.compliance @ self.nodal_load(pressure_at_quad)
+
+
+def _with_outside(stiffness, outside):
+    """(S⁻¹ + k 11ᵀ)⁻¹ = S − k s sᵀ/(1 + k 1ᵀs), s = S1 (Sherman-Morrison), for the SPD
+    stiffness S of the truncated solid and the compliance k ≥ 0 that the solid outside adds
+    uniformly: the surface stiffness without inverting S twice."""
+    row_sums = stiffness.sum(axis=1)
+    return stiffness - (outside / (1.0 + outside * row_sums.sum())) * np.outer(row_sums,
+                                                                               row_sums)
 
 
 def _linear_interpolation(r, nodes):
