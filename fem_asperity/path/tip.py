@@ -26,7 +26,7 @@ from scipy.optimize import brentq
 
 from .continuation import DELTA_ROW, Linearisation, Trace, cholesky_in_place, correct
 from .grids import EdgeGrids
-from .landing import converged, pin_nodes
+from .landing import PIN_PENALTY, converged, pin_nodes
 from .surface import TIP_GAP, gap_keeping_step
 
 #: The first step of the tip, in bands of the grids; a step is grown by GROWTH after a point that
@@ -91,23 +91,35 @@ class Held(NamedTuple):
 class _Bordered:
     """The Newton matrix [[∂g/∂w, ∂g/∂δ], [−eᵀ, 1]] of a held state (e: the pin's weights on its
     two nodes), solved by the single-precision Cholesky factor of ∂g/∂w and elimination of the
-    border, refined once against the double-precision product; by double-precision LU where
-    ∂g/∂w is not positive definite (past the fold)."""
+    border, refined once against the double-precision product. Where ∂g/∂w is not positive
+    definite (a prediction, or past the fold) the pin's penalty ρ e eᵀ is added to it and ρ times
+    the constraint row taken from the first rows, [[∂g/∂w + ρ e eᵀ, ∂g/∂δ − ρ e], [−eᵀ, 1]]: the
+    same solutions, and positive definite where the pin holds the tip's unstable mode
+    (`landing.pinned`); else by double-precision LU."""
 
     def __init__(self, surface, w, delta, pin):
         self.g_delta, self.p_delta, slope = surface.sensitivities(w, delta)
         self.pin, n = pin, w.size
         self._product = lambda x: surface.tangent_product(slope, x)
         self.load_factor = surface.load_factor
-        jac = surface.tangent_matrix(slope)
+        self._penalty, self._lu = 0.0, None
         try:
-            self._cho, self._lu = cholesky_in_place(jac), None
-            self._b = self._solve_j(self.g_delta)
+            self._cho = cholesky_in_place(surface.tangent_matrix(slope))
         except LinAlgError:
-            matrix = np.empty((n + 1, n + 1))
-            matrix[:n, :n] = surface.tangent_matrix(slope, np.float64)
-            matrix[:n, n], matrix[n, :n], matrix[n, n] = self.g_delta, -pin, 1.0
-            self._cho, self._lu = None, lu_factor(matrix, overwrite_a=True, check_finite=False)
+            nodes = np.flatnonzero(pin)
+            self._penalty = PIN_PENALTY * float(np.max(surface.stiffness[nodes, nodes]))
+            jac = surface.tangent_matrix(slope)
+            jac[np.ix_(nodes, nodes)] += self._penalty * np.outer(pin[nodes], pin[nodes])
+            try:
+                self._cho = cholesky_in_place(jac)
+            except LinAlgError:
+                matrix = np.empty((n + 1, n + 1))
+                matrix[:n, :n] = surface.tangent_matrix(slope, np.float64)
+                matrix[:n, n], matrix[n, :n], matrix[n, n] = self.g_delta, -pin, 1.0
+                self._cho, self._lu = None, lu_factor(matrix, overwrite_a=True,
+                                                      check_finite=False)
+                return
+        self._b = self._solve_j(self.g_delta - self._penalty * pin)
 
     def _solve_j(self, rhs):
         return cho_solve(self._cho, rhs.astype(np.float32), check_finite=False).astype(float)
@@ -116,7 +128,7 @@ class _Bordered:
         if self._lu is not None:
             step = lu_solve(self._lu, np.append(rhs_w, rhs_c), check_finite=False)
             return step[:-1], step[-1]
-        a = self._solve_j(rhs_w)
+        a = self._solve_j(rhs_w - self._penalty * rhs_c * self.pin)
         dd = (rhs_c + self.pin @ a) / (1.0 + self.pin @ self._b)
         return a - dd * self._b, dd
 
