@@ -92,10 +92,10 @@ class _Bordered:
     """The Newton matrix [[∂g/∂w, ∂g/∂δ], [−eᵀ, 1]] of a held state (e: the pin's weights on its
     two nodes), solved by the single-precision Cholesky factor of ∂g/∂w and elimination of the
     border, refined once against the double-precision product. Where ∂g/∂w is not positive
-    definite (a prediction, or past the fold) the pin's penalty ρ e eᵀ is added to it and ρ times
-    the constraint row taken from the first rows, [[∂g/∂w + ρ e eᵀ, ∂g/∂δ − ρ e], [−eᵀ, 1]]: the
-    same solutions, and positive definite where the pin holds the tip's unstable mode
-    (`landing.pinned`); else by double-precision LU."""
+    definite (a prediction, or past the fold) the pin's penalty ρ e eᵀ (`landing.PIN_PENALTY`)
+    is added to it and ρ e times the constraint row subtracted from the first rows,
+    [[∂g/∂w + ρ e eᵀ, ∂g/∂δ − ρ e], [−eᵀ, 1]]: the same solutions, positive definite where the
+    pin holds the tip's unstable mode (`landing.pinned`); else by double-precision LU."""
 
     def __init__(self, surface, w, delta, pin):
         self.g_delta, self.p_delta, slope = surface.sensitivities(w, delta)
