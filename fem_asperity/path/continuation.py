@@ -38,11 +38,8 @@ MOVED_REFINEMENTS, ACCEPT = 3, 1e-2
 #: points (FE `draft`, μ = 5: with the 187 nodes within 0.5 √(Rε) of the tip refreshed, the
 #: rest kept from 8 points back, the refinement contracts by 0.1-0.2 per sweep; kept whole, the
 #: matrix's eigenvalues move by up to 150). A moved linearisation whose tip left the middle half
-#: of its block factorises afresh. A quarter rather than an eighth: on the grids that follow the
-#: edge the tip left the middle of an eighth often (BEM `draft`, μ = 20: 155 moves refused, 46
-#: with a quarter; fresh factorisations in Newton 526 and 417), and the refreshed block costs
-#: a sixty-fourth of a fresh factorisation. Not pinned by a test.
-EDGE_SHARE = 0.25
+#: of its block factorises afresh. Not pinned by a test.
+EDGE_SHARE = 0.125
 #: Where a single-precision Cholesky factorisation of ∂g/∂w succeeds, the sign of its softest
 #: eigenvalue is judged on the Jacobi-scaled tangent A = D ∂g/∂w D (D = diag(∂g/∂w)^(−1/2), unit
 #: diagonal; by Sylvester's law of inertia it is positive definite where ∂g/∂w is). Single
