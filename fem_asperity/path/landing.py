@@ -52,6 +52,12 @@ PEEL_TOL, PEEL_NEWTON, PEEL_SMALLEST = 1e-6, 10, 1.0 / 16.0
 PIN_PENALTY = 10.0
 
 
+def pin_penalty(surface, nodes):
+    """ρ of the penalty ρ e eᵀ on the pin's `nodes`: PIN_PENALTY × the largest elastic diagonal
+    entry there."""
+    return PIN_PENALTY * float(np.max(surface.stiffness[nodes, nodes]))
+
+
 def _shifted_factor(jac, weight, shift, floor, unshifted_first):
     """(Cholesky factor of jac + s·diag(weight), s) for s = 0 if `unshifted_first` and that
     factorisation succeeds, else s raised SHIFT_RAISE times from max(shift, floor) until it does."""
@@ -192,7 +198,7 @@ def pinned(surface, w, delta, tip, *, tol=PEEL_TOL, max_iterations=PEEL_NEWTON):
     held_value = weights @ (delta + surface.node_profile[nodes]) - TIP_GAP  # of eᵀw
     pin = np.zeros_like(w)
     pin[nodes] = weights
-    penalty = PIN_PENALTY * float(np.max(surface.stiffness[nodes, nodes]))
+    penalty = pin_penalty(surface, nodes)
     coupling = (penalty * np.outer(weights, weights)).astype(np.float32)
     scale = 1.0 + np.max(np.abs(surface.stiffness @ w))
     w = w.copy()

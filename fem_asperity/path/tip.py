@@ -26,7 +26,7 @@ from scipy.optimize import brentq
 
 from .continuation import DELTA_ROW, Linearisation, Trace, cholesky_in_place, correct
 from .grids import EdgeGrids
-from .landing import PIN_PENALTY, converged, pin_nodes
+from .landing import converged, pin_nodes, pin_penalty
 from .surface import TIP_GAP, gap_keeping_step
 
 #: The first step of the tip, in bands of the grids; a step is grown by GROWTH after a point that
@@ -92,7 +92,7 @@ class _Bordered:
     """The Newton matrix [[∂g/∂w, ∂g/∂δ], [−eᵀ, 1]] of a held state (e: the pin's weights on its
     two nodes), solved by the single-precision Cholesky factor of ∂g/∂w and elimination of the
     border, refined once against the double-precision product. Where ∂g/∂w is not positive
-    definite (a prediction, or past the fold) the pin's penalty ρ e eᵀ (`landing.PIN_PENALTY`)
+    definite (a prediction, or past the fold) the pin's penalty ρ e eᵀ (`landing.pin_penalty`)
     is added to it and ρ e times the constraint row subtracted from the first rows,
     [[∂g/∂w + ρ e eᵀ, ∂g/∂δ − ρ e], [−eᵀ, 1]]: the same solutions, positive definite where the
     pin holds the tip's unstable mode (`landing.pinned`); else by double-precision LU."""
@@ -103,22 +103,19 @@ class _Bordered:
         self._product = lambda x: surface.tangent_product(slope, x)
         self.load_factor = surface.load_factor
         self._penalty, self._lu = 0.0, None
-        try:
-            self._cho = cholesky_in_place(surface.tangent_matrix(slope))
-        except LinAlgError:
+        self._cho = _cholesky_factor_or_none(surface.tangent_matrix(slope))
+        if self._cho is None:
             nodes = np.flatnonzero(pin)
-            self._penalty = PIN_PENALTY * float(np.max(surface.stiffness[nodes, nodes]))
+            self._penalty = pin_penalty(surface, nodes)
             jac = surface.tangent_matrix(slope)
             jac[np.ix_(nodes, nodes)] += self._penalty * np.outer(pin[nodes], pin[nodes])
-            try:
-                self._cho = cholesky_in_place(jac)
-            except LinAlgError:
-                matrix = np.empty((n + 1, n + 1))
-                matrix[:n, :n] = surface.tangent_matrix(slope, np.float64)
-                matrix[:n, n], matrix[n, :n], matrix[n, n] = self.g_delta, -pin, 1.0
-                self._cho, self._lu = None, lu_factor(matrix, overwrite_a=True,
-                                                      check_finite=False)
-                return
+            self._cho = _cholesky_factor_or_none(jac)
+        if self._cho is None:
+            matrix = np.empty((n + 1, n + 1))
+            matrix[:n, :n] = surface.tangent_matrix(slope, np.float64)
+            matrix[:n, n], matrix[n, :n], matrix[n, n] = self.g_delta, -pin, 1.0
+            self._lu = lu_factor(matrix, overwrite_a=True, check_finite=False)
+            return
         self._b = self._solve_j(self.g_delta - self._penalty * pin)
 
     def _solve_j(self, rhs):
@@ -146,6 +143,15 @@ class _Bordered:
         dw, dd = self.solve(np.zeros_like(self.pin), -dc_dtip)
         return np.array([dd - dw[0], dd, -(self.g_delta @ dw) / self.load_factor
                          + self.p_delta * dd])
+
+
+def _cholesky_factor_or_none(jac):
+    """The single-precision Cholesky factor of `jac` (overwritten), or None where it is not
+    positive definite."""
+    try:
+        return cholesky_in_place(jac)
+    except LinAlgError:
+        return None
 
 
 def _constraint(surface, w, delta, tip):
