@@ -67,6 +67,20 @@ FE_GRADING = 0.2
 #: other μ measured with the pre-contact grid at H_MAX_BEM, before it held every node).
 MU_TRACKING = {"bem": 6.0, "fem": 5.0}
 BAND_COHESIVE, H_INSIDE = 8.0, 0.1
+#: A band holds at most BAND_ELEMENTS elements of the ripple-free size (RIPPLE_FREE μ^(−2) /
+#: RIPPLE_MARGIN, which sets every preset's edge elements from μ ≈ 18 on), 128, as many as the
+#: BEM `default`'s band holds below: beyond, BAND_COHESIVE μ^(−3/2) would hold ever more (∝ √μ,
+#: 214 at μ = 50), and each Newton matrix grows with them (its factorisation as n³) while the
+#: steps, which the band limits, do not grow. BEM `draft` at μ = 50 (one run, this machine, with
+#: EDGE_STEP): 521.8 s → 386.2 s, grids of at most 1003 nodes instead of 1348, 1187 grids
+#: instead of 765, P̄off 3.7e-9 apart; below μ ≈ 17.8 the band is unchanged. Not pinned by a test.
+BAND_ELEMENTS = 128
+#: A step along a branch on grids that follow the edge changes ā_c by at most EDGE_STEP of a
+#: band, 1 (a step that leaves its grid's fine band is retried shorter anyway,
+#: `continuation.INADMISSIBLE_RATIO`): with 0.5, BEM `draft` at μ = 20 took 497 points and
+#: 32.0 s, with 1 423 points and 30.6 s, P̄off 4e-10 apart (one run each, this machine). Not
+#: pinned by a test.
+EDGE_STEP = 1.0
 #: Growth of boundary-integral elements per element beyond the fine zone, 0.1. Not pinned by a
 #: test.
 BEM_GROWTH = 0.1
@@ -313,8 +327,8 @@ def discretisation(mu, accuracy="default", *, p_end=1.0, method="fem", track_edg
     r_fine = max(R_FINE_MIN, 1.3 * jkr_radius(p_end, mu))
     edge = track_edge or (track_edge is None and mu >= MU_TRACKING[method])
     h_ripple = RIPPLE_FREE["edge" if edge and method == "bem" else method] * mu**-2.0
-    band = BAND_COHESIVE * mu**-1.5
-    edge_trace = replace(trace, da=min(trace.da, 0.5 * band), front=band)
+    band = min(BAND_COHESIVE * mu**-1.5, BAND_ELEMENTS * h_ripple / RIPPLE_MARGIN)
+    edge_trace = replace(trace, da=min(trace.da, EDGE_STEP * band), front=band)
 
     def h(largest, cohesive):
         return min(factor * min(largest, cohesive * mu**-1.5), h_ripple / RIPPLE_MARGIN)
