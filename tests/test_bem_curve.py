@@ -135,6 +135,32 @@ def test_energy_descent_lands_where_newton_on_the_traced_branch_does(whole_mu2):
         assert surface.force(w, jump.delta) == pytest.approx(jump.p_after, rel=1e-8)
 
 
+def test_a_descent_stops_at_the_first_iterate_its_grid_no_longer_resolves(whole_mu2):
+    """At the jump-out of μ = 2 the descent draws the crack tip in (0.87 → 0): with `resolved`
+    asking for a tip beyond half its start (as `grids.EdgeGrids.land` asks it to stay in its
+    grid's band) it stops at the first iterate below, not converged and lower in energy, and
+    from there lands where the whole descent does."""
+    from fem_asperity.path.landing import land
+
+    surface, traced, stable, folds, jumps = whole_mu2
+    k, delta = folds[1], jumps[1].delta
+    start = traced.states[k + 1 if stable[k] else k]
+    bound = 0.5 * surface.crack_tip(start, delta)
+    steps = []
+
+    def resolved(w):
+        steps.append(surface.crack_tip(w, delta))
+        return steps[-1] >= bound
+
+    stopped = land(surface, start, delta, resolved=resolved)
+    assert not stopped.converged and stopped.iterations == len(steps) > 1
+    assert steps[-1] < bound <= min(steps[:-1])
+    assert surface.energy(stopped.w, delta) < surface.energy(start, delta)
+    landed = land(surface, stopped.w, delta)
+    assert landed.converged
+    assert surface.force(landed.w, delta) == pytest.approx(jumps[1].p_after, rel=1e-8)
+
+
 def test_a_peel_from_the_jump_out_fold_leads_the_descent_to_its_landing(whole_mu2):
     """At the jump-out of μ = 2: `peel` from the first unstable point past the fold, the crack
     tip moved the way it moves there, lowers the energy and takes the tip most of the way in

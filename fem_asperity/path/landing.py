@@ -115,13 +115,16 @@ class Landing(NamedTuple):
     converged: bool
 
 
-def land(surface, w, delta, *, tol=1e-9, max_iterations=None):
+def land(surface, w, delta, *, tol=1e-9, max_iterations=None, resolved=None):
     """Stable equilibrium at fixed `delta` reached downhill in energy from the state `w`.
 
     tol: as `continuation.correct` (residual ≤ tol relative, last increment ≤ √tol relative).
     max_iterations: default BASE_ITERATIONS + the number of surface nodes.
+    resolved: callable(w), whether `surface` still resolves the iterate; the descent stops at
+        the first that it does not (None: never).
     Returns a `Landing`: with `converged`, w has a positive definite tangent; without, w is the
-    last iterate (lower in energy than the start) after `max_iterations`.
+    last iterate (lower in energy than the start) after `max_iterations`, or the first that
+    `surface` does not resolve.
     """
     if max_iterations is None:
         max_iterations = BASE_ITERATIONS + w.size
@@ -160,6 +163,8 @@ def land(surface, w, delta, *, tol=1e-9, max_iterations=None):
                 break  # at a minimum E is flat to rounding: Newton's residual decides
             alpha *= 0.5
         w = w_try
+        if resolved is not None and not resolved(w):
+            return Landing(w, iteration, False)
         unshifted_first = shift == 0.0 or alpha == 1.0
         if shift > 0.0:
             start = shift * (SHIFT_AFTER_SHORT if alpha < 1.0 else SHIFT_AFTER_FULL)
