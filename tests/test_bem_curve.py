@@ -136,7 +136,7 @@ def test_energy_descent_lands_where_newton_on_the_traced_branch_does(whole_mu2):
 
 
 def test_a_descent_stops_at_the_first_iterate_its_grid_no_longer_resolves(whole_mu2):
-    """At the jump-out of μ = 2 the descent draws the crack tip in (0.87 → 0): with `resolved`
+    """At the jump-out of μ = 2 the descent draws the crack tip in (0.87 → 0 √(Rε)): with `resolved`
     asking for a tip beyond half its start (as `grids.EdgeGrids.land` asks it to stay in its
     grid's band) it stops at the first iterate below, not converged and lower in energy, and
     from there lands where the whole descent does."""

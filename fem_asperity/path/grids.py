@@ -37,7 +37,7 @@ from .surface import TIP_GAP, LJSurface, SurfaceShape
 #: A landing on grids that follow the edge runs in stages (of LANDING_STAGE descent iterations,
 #: or a peel on one grid), moving to the grid of the iterate's edges when they leave its band, at
 #: most MAX_STAGES of them: a peel crosses up to (AHEAD + FIT) of a band per grid, and the
-#: jump-out of BEM `draft` at μ = 50 peels a tip of a few √(Rε) at a band of 0.023, a few
+#: jump-out of BEM `draft` at μ = 50 peels a tip of a few √(Rε) at a band of 0.0135, a few
 #: hundred grids. Not pinned by a test.
 LANDING_STAGE, MAX_STAGES = 100, 2000
 #: A grid fits a state (resolves it as one built for it would: a branch stays on it, a landing
@@ -171,11 +171,13 @@ class EdgeGrids:
 
     def _tip_in_band_or_beyond(self, surface, delta, w):
         """Whether the crack tip of the state (w, δ̄o) has not receded below the fine band of
-        `surface`'s tip (for `land`): inside it the elements grow up to h_inside, and a neck
+        `surface`'s tip (for `land`): below it the elements grow up to h_inside, and a neck
         narrower than they are is not resolved (BEM `draft`, μ = 50: a jump-out's descent drew
-        the tip from 0.61 to 0.059 on elements of 0.1, a node's gap fell to −1.3 between
-        positive gaps at the quadrature points, and moved to the next grid the landing
-        diverged). Always true on the pre-contact grid."""
+        the tip from 0.61 to 0.059 √(Rε) on elements of 0.1 √(Rε), a node's gap fell to −1.3 ε
+        between positive gaps at the quadrature points, and moved to the next grid the landing
+        diverged). Always true on the pre-contact grid. Not pinned by a test (that run is in
+        `benchmarks/large_mu.py --large`; `landing.land`'s stop is:
+        test_bem_curve.py::test_a_descent_stops_at_the_first_iterate_its_grid_no_longer_resolves)."""
         built = self._built_for[surface][0][1]
         return built == 0.0 or surface.crack_tip(w, delta) >= built - self.band
 
@@ -229,7 +231,9 @@ class EdgeGrids:
         iterations of descent, or, after a descent stage that did not converge, a `peel` of the
         crack tip the way the descent moved it, on one grid. Whenever the iterate no longer fits
         its grid (a landing's contact spreads beyond it) it moves to the grid of its edges (w
-        interpolated linearly). Raises ContinuationError if MAX_STAGES stages do not get there."""
+        interpolated linearly); a descent stage ends early where the crack tip recedes below
+        its grid's band (`_tip_in_band_or_beyond`). Raises ContinuationError if MAX_STAGES
+        stages do not get there."""
         iterations, peeling, stalled = 0, 0.0, False
         for _ in range(MAX_STAGES):
             if not self.fits(surface, w, delta):

@@ -121,7 +121,7 @@ def land(surface, w, delta, *, tol=1e-9, max_iterations=None, resolved=None):
     tol: as `continuation.correct` (residual ≤ tol relative, last increment ≤ √tol relative).
     max_iterations: default BASE_ITERATIONS + the number of surface nodes.
     resolved: callable(w), whether `surface` still resolves the iterate; the descent stops at
-        the first that it does not (None: never).
+        the first iterate of a line-searched step that it does not (None: never).
     Returns a `Landing`: with `converged`, w has a positive definite tangent; without, w is the
     last iterate (lower in energy than the start) after `max_iterations`, or the first that
     `surface` does not resolve.

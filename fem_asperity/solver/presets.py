@@ -68,12 +68,13 @@ FE_GRADING = 0.2
 MU_TRACKING = {"bem": 6.0, "fem": 5.0}
 BAND_COHESIVE, H_INSIDE = 8.0, 0.1
 #: A band holds at most BAND_ELEMENTS elements of the ripple-free size (RIPPLE_FREE μ^(−2) /
-#: RIPPLE_MARGIN, which sets every preset's edge elements from μ ≈ 18 on), 128, as many as the
-#: BEM `default`'s band holds below: beyond, BAND_COHESIVE μ^(−3/2) would hold ever more (∝ √μ,
-#: 214 at μ = 50), and each Newton matrix grows with them (its factorisation as n³) while the
-#: steps, which the band limits, do not grow. BEM `draft` at μ = 50 (one run, this machine, with
-#: EDGE_STEP): 521.8 s → 386.2 s, grids of at most 1003 nodes instead of 1348, 1187 grids
-#: instead of 765, P̄off 3.7e-9 apart; below μ ≈ 17.8 the band is unchanged. Not pinned by a test.
+#: RIPPLE_MARGIN, which sets the BEM `default`'s edge elements from μ ≈ 18 on, `draft`'s from
+#: 4.5), 128, as many as `default`'s band holds below: beyond, BAND_COHESIVE μ^(−3/2) would hold
+#: ever more (∝ √μ, 214 at μ = 50), and each Newton matrix grows with them (its factorisation as
+#: n³) while the steps, which the band limits, do not grow. BEM `draft` at μ = 50 (one run, this
+#: machine, with EDGE_STEP): 521.8 s → 386.2 s, grids of at most 1003 nodes instead of 1348, 1187
+#: grids instead of 765, P̄off 3.7e-9 apart; below μ ≈ 17.8 the band is unchanged. Not pinned by
+#: a test.
 BAND_ELEMENTS = 128
 #: A step along a branch on grids that follow the edge changes ā_c by at most EDGE_STEP of a
 #: band, 1 (a step that leaves its grid's fine band is retried shorter anyway,
