@@ -78,8 +78,8 @@ BAND_COHESIVE, H_INSIDE = 8.0, 0.1
 BAND_ELEMENTS = 128
 #: A step along a branch on grids that follow the edge changes ā_c by at most EDGE_STEP of a
 #: band, 1 (a step that leaves its grid's fine band is retried shorter anyway,
-#: `continuation.INADMISSIBLE_RATIO`): with 0.5, BEM `draft` at μ = 20 took 497 points and
-#: 32.0 s, with 1 423 points and 30.6 s, P̄off 4e-10 apart (one run each, this machine). Not
+#: `continuation.INADMISSIBLE_RATIO`): BEM `draft` at μ = 20 took 497 points and 32.0 s with
+#: 0.5, 423 points and 30.6 s with 1, P̄off 4e-10 apart (one run each, this machine). Not
 #: pinned by a test.
 EDGE_STEP = 1.0
 #: Growth of boundary-integral elements per element beyond the fine zone, 0.1. Not pinned by a
