@@ -38,6 +38,36 @@ def test_jkr_approach_vanishes_where_hertz_and_adhesion_balance():
     assert ref.jkr_approach(radius=a, mu=mu) == pytest.approx(0.0, abs=1e-12)
 
 
+@pytest.mark.parametrize("mu", [0.5, 50.0, 1e6])
+def test_jkr_radius_at_approach_is_the_stable_root_down_to_the_fixed_grips_pull_off(mu):
+    # the least approach: where d(approach)/da = 0, found here by minimising it numerically
+    least = minimize_scalar(lambda a: ref.jkr_approach(radius=a, mu=mu),
+                            bounds=(1e-3 * mu**0.5, 10 * mu**0.5), method="bounded",
+                            options={"xatol": 1e-12 * mu**0.5})
+    for a in (1.0001 * least.x, 2.0 * least.x, 30.0 * least.x):
+        approach = ref.jkr_approach(radius=a, mu=mu)
+        assert ref.jkr_radius_at_approach(approach=approach, mu=mu) == pytest.approx(a, rel=1e-9)
+    assert math.isnan(ref.jkr_radius_at_approach(approach=least.fun - 1e-6 * abs(least.fun),
+                                                 mu=mu))
+
+
+@pytest.mark.parametrize("mu", [1.0, 50.0])
+def test_jkr_displacement_follows_the_sphere_inside_and_boussinesq_far_away(mu):
+    a = 2.0 * (np.pi / 8.0) ** (1 / 3) * mu**0.5
+    approach = ref.jkr_approach(radius=a, mu=mu)
+    inside = np.array([0.0, 0.5 * a, a])
+    assert ref.jkr_displacement(inside, radius=a, mu=mu) == pytest.approx(
+        approach - inside**2 / 2, rel=1e-13, abs=1e-13 * a**2)
+    # continuous across the edge, where Hertz's and the punch's outside fields meet the sphere
+    # (the punch's rises like √(r − a): 2e-14 of a off the edge it has moved by ~1e-7 a²)
+    edge = ref.jkr_displacement(a * np.array([1 - 1e-14, 1 + 1e-14]), radius=a, mu=mu)
+    assert edge[1] == pytest.approx(edge[0], abs=1e-6 * a**2)
+    # far away a point load: u = P / (pi E* r) = 2 mu^1.5 P / r in these units
+    far = 1e4 * a
+    assert ref.jkr_displacement(far, radius=a, mu=mu) == pytest.approx(
+        2 * mu**1.5 * ref.jkr_force(radius=a, mu=mu) / far, rel=1e-7)
+
+
 def test_maugis_lambda_is_1157_mu():
     assert ref.MD_LAMBDA_PER_MU == pytest.approx(1.157, abs=5e-4)
 

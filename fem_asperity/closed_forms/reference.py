@@ -7,7 +7,7 @@ Units are the paper's: forces in 2πRΔγ (negative = tensile), lengths along z 
 from typing import NamedTuple
 
 import numpy as np
-from scipy.optimize import minimize_scalar
+from scipy.optimize import brentq, minimize_scalar
 
 from ..plumbing.checks import in_range, positive
 from ..plumbing.errors import InputError
@@ -56,6 +56,36 @@ def jkr_approach(*, radius, mu):
     """JKR approach (indentation) at contact radius ā: δ̄ = ā² − √(2πā) μ^(3/4), in ε."""
     a, mu = in_range("radius", radius, 0.0, closed_lo=True), positive("mu", mu)
     return a**2 - np.sqrt(2.0 * np.pi * a) * mu**0.75
+
+
+def jkr_radius_at_approach(*, approach, mu):
+    """The stable JKR contact radius ā (√(εR)) at approach δ̄ (ε) under displacement control: the
+    larger root of `jkr_approach`(ā) = δ̄, at least the radius (π/8)^(1/3) μ^(1/2) where δ̄ is
+    least (the fixed-grips pull-off); nan below that least δ̄ (no JKR contact there)."""
+    mu = positive("mu", mu)
+    least = (np.pi / 8.0) ** (1.0 / 3.0) * np.sqrt(mu)
+    if approach < jkr_approach(radius=least, mu=mu):
+        return np.nan
+    high = least
+    while jkr_approach(radius=high, mu=mu) < approach:
+        high *= 2.0
+    return brentq(lambda a: jkr_approach(radius=a, mu=mu) - approach, least, high, xtol=1e-14,
+                  rtol=4.0 * np.finfo(float).eps)
+
+
+def jkr_displacement(r, *, radius, mu):
+    """Surface displacement into the solid (ε, > 0 pressed in) at radii r (√(εR)) of JKR contact
+    of radius ā: the sphere's profile δ̄ − r²/2 inside ā (δ̄ = `jkr_approach`), outside it
+    Hertz's for ā plus that of a flat punch of depth −√(2πā) μ^(3/4) (Johnson, Contact
+    Mechanics, eqs. 3.42b and 3.36; E* = 1). Far away it tends to Boussinesq's 2μ^(3/2) P̄/r
+    for the JKR force P̄."""
+    a, mu = positive("radius", radius), positive("mu", mu)
+    r = np.asarray(r, dtype=float)
+    hertz, punch = a**2, -np.sqrt(2.0 * np.pi * a) * mu**0.75
+    rho = np.maximum(r / a, 1.0)
+    outside = (hertz / np.pi * ((2.0 - rho**2) * np.arcsin(1.0 / rho) + np.sqrt(rho**2 - 1.0))
+               + 2.0 * punch / np.pi * np.arcsin(1.0 / rho))
+    return np.where(r <= a, hertz + punch - 0.5 * r**2, outside)
 
 
 def jkr_pull_off(*, mu):

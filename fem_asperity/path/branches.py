@@ -126,10 +126,20 @@ def _piece(surface, w, delta, heading, settings, until, on_point, admissible=Non
     return traced, fold, beyond
 
 
-def land_jump(grids, surface, fold, beyond, settings, counter, landed=None):
+def land_jump(grids, surface, fold, beyond, settings, counter, landed=None, *,
+              into_contact=False):
     """Land past `fold` downhill from the unstable state `beyond`, on the grid of the landing
-    (`grids.land`), or take the (surface, w) `landed` already: (surface, w, Jump)."""
+    (`grids.land`), or take the (surface, w) `landed` already: (surface, w, Jump). A jump
+    `into_contact` lands from the contact `grids.contact_guess` offers instead, where it has
+    one and that lands in contact lower in energy than `beyond` (at large μ, where the grids
+    follow the edge, the approach has one stable state in contact at the fold's δ̄o)."""
     delta, before = fold
+    if landed is None:
+        guess = grids.contact_guess(surface, beyond, delta) if into_contact else None
+        if guess is not None:
+            landed, its = _land_below(grids, *guess, delta, settings,
+                                      surface.energy(beyond, delta))
+            counter.newton_iterations += its
     if landed is None:
         surface, w, its = grids.land(surface, beyond, delta, tol=settings.tol)
         counter.newton_iterations += its
@@ -140,6 +150,18 @@ def land_jump(grids, surface, fold, beyond, settings, counter, landed=None):
         raise ContinuationError(f"the jump at δ = {delta:.6g} landed back on its own branch")
     return surface, w, Jump(delta=delta, x_before=before["x"], p_before=before["p"], p_after=p,
                    a_c_after=surface.contact(w, delta)[1], x_after=x)
+
+
+def _land_below(grids, surface, w, delta, settings, energy):
+    """((surface, w) landed from (w, δ̄o) by `grids.land` where that ends in contact (a crack
+    tip) with an energy below `energy`, else None; the Newton iterations (0 if it failed)."""
+    try:
+        surface, w, iterations = grids.land(surface, w, delta, tol=settings.tol)
+    except ContinuationError:
+        return None, 0
+    if surface.crack_tip(w, delta) > 0.0 and surface.energy(w, delta) < energy:
+        return (surface, w), iterations
+    return None, iterations
 
 
 def _approach_branch(branches, delta, x, jump):
@@ -189,7 +211,8 @@ def stable_paths(grids: Grids, settings, progress=None):
         if len(jumps_in) >= MAX_JUMPS:
             raise ContinuationError(f"more than {MAX_JUMPS} jumps on approach")
         approach.append(dict(delta=fold[0], **fold[1], branch=len(jumps_in)))
-        surface, w, jump = land_jump(grids, surface, fold, beyond, settings, traced, landed)
+        surface, w, jump = land_jump(grids, surface, fold, beyond, settings, traced, landed,
+                                     into_contact=True)
         jumps_in.append(jump)
         delta, heading = fold[0], _DOWN
     retraction, jumps_out, extra = _retract(grids, starts, settings, branches, traced, progress)
