@@ -129,13 +129,15 @@ class SurfaceShape:
         r0, r1, g0, g1 = self.r_nodes[i], self.r_nodes[i + 1], gaps[i], gaps[i + 1]
         return float(r0 + (r1 - r0) * (TIP_GAP - g0) / (g1 - g0))
 
-    def translated(self, w, delta, shift, new_delta=None):
+    def translated(self, w, delta, shift, new_delta=None, *, onto=None):
         """The state at `new_delta` (default δ) whose node gaps are those of (w, δ) moved
         outward by `shift` (√(Rε)), linearly interpolated; where r − shift falls outside the
-        nodes, the end gap is held. A crack tip's front at large μ moves nearly unchanged."""
+        nodes, the end gap is held. A crack tip's front at large μ moves nearly unchanged.
+        onto: the `SurfaceShape` whose nodes it is given on (default this one's)."""
+        onto = self if onto is None else onto
         gaps = delta + self.node_profile - w
-        moved = np.interp(self.r_nodes - shift, self.r_nodes, gaps)
-        return (delta if new_delta is None else new_delta) + self.node_profile - moved
+        moved = np.interp(onto.r_nodes - shift, self.r_nodes, gaps)
+        return (delta if new_delta is None else new_delta) + onto.node_profile - moved
 
     def centre_gap(self, w, delta):
         """x̄o = h(0) = δ − w(0), in ε."""

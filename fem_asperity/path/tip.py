@@ -24,7 +24,14 @@ import numpy as np
 from scipy.linalg import LinAlgError, cho_solve, lu_factor, lu_solve
 from scipy.optimize import brentq
 
-from .continuation import DELTA_ROW, Linearisation, Trace, cholesky_in_place, correct
+from .continuation import (
+    DELTA_ROW,
+    Linearisation,
+    Trace,
+    TraceSettings,
+    cholesky_in_place,
+    correct,
+)
 from .grids import EdgeGrids
 from .landing import converged, pin_nodes, pin_penalty
 from .surface import TIP_GAP, gap_keeping_step
@@ -34,11 +41,16 @@ from .surface import TIP_GAP, gap_keeping_step
 #: predicted state still lies in the grid's fine zone, `admits`), nor below SMALLEST bands (then
 #: the path hands over to `continuation.follow`). Not pinned by a test.
 FIRST_STEP, GROWTH, EASY, SMALLEST = 0.25, 1.5, 3, 1.0 / 64.0
-#: Steps are shortened for the change of ā_c (settings.da) down to DA_FLOOR bands, no further:
-#: the compressive contact can vanish within such a step while δ̄o and P̄ change smoothly (BEM
-#: `draft`, μ = 20: ā_c fell from 1.9 to 0 as the tip receded by 0.17 √(Rε), 1.9 bands, near
-#: tip 5.5; held to da = 0.5 band, the steps fell below SMALLEST). Not pinned by a test.
-DA_FLOOR = 0.125
+#: Steps are shortened where ā_c changes by more than TIP_DA (√(Rε)), down to DA_FLOOR bands, no
+#: further: the compressive contact can vanish within such a step while δ̄o and P̄ change
+#: smoothly (BEM `draft`, μ = 20: ā_c fell from 1.9 to 0 as the tip receded by 0.17 √(Rε), 1.9
+#: bands, near tip 5.5; held to da = 0.5 band, the steps fell below SMALLEST). TIP_DA is the
+#: uniform grid's da (`TraceSettings`), not the settings' da, which grids that follow the edge
+#: hold to a band (`presets.EDGE_STEP`) for `continuation.follow`: ā_c is no event of a branch
+#: followed in its tip, and held to a band (ā_c recedes faster than the tip) the steps were 0.7
+#: of a band. BEM `draft`, μ = 50 (one run each, this machine, with `_from`'s grid): 255.1 s →
+#: 228.0 s, P̄off 1.2e-9 and the jump-out's δ̄o 6e-7 apart. Not pinned by a test.
+TIP_DA, DA_FLOOR = TraceSettings.da, 0.125
 #: Newton iterations allowed for one state. Not pinned by a test.
 MAX_NEWTON = 10
 #: A retraction hands over to `continuation.follow` before the tip comes within END bands of the
@@ -184,13 +196,19 @@ def held(surface, w, delta, tip, *, tol):
     return None
 
 
-def _from(state, tip, tol):
-    """`held` at `tip` from the nearby held `state`, its gaps moved along with the tip and δ̄o
-    along its rate."""
+def _from(grids, state, tip, tol):
+    """`held` at `tip` from the held `state`, its gaps moved along with the tip and δ̄o along its
+    rate; on the grid of the moved state's edges where `state`'s grid does not admit it (then
+    the gaps are moved onto that grid's nodes: solved on the old grid first, its tip on coarse
+    elements, the state needed solving again on the new one)."""
     shift = tip - state.tip
     delta = state.delta + state.rates[1] * shift
-    w = state.surface.translated(state.w, state.delta, shift, delta)
-    return held(state.surface, w, delta, tip, tol=tol)
+    surface = state.surface
+    w = surface.translated(state.w, state.delta, shift, delta)
+    if not grids.admits(surface, w, delta):
+        surface = grids.move(surface, w, delta)[0]
+        w = state.surface.translated(state.w, state.delta, shift, delta, onto=surface)
+    return held(surface, w, delta, tip, tol=tol)
 
 
 class TipPath(NamedTuple):
@@ -223,7 +241,7 @@ def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point
     in `direction` (`tip_direction`), until `until(trace)` holds, δ̄o folds (the jump-out), or,
     receding, the tip nears the axis (END bands), or the steps fall below SMALLEST bands (then the
     caller goes on with `continuation.follow` from the last state). Steps are limited as
-    `follow`'s: P̄ and ā_c change by at most settings.dp and settings.da between points.
+    `follow`'s: P̄ and ā_c change by at most settings.dp and TIP_DA between points.
     `on_point(trace)` after each point. Returns a `TipPath`."""
     band, tol = grids.band, settings.tol
     state = held(surface, w, delta, surface.crack_tip(w, delta), tol=tol)
@@ -244,12 +262,12 @@ def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point
         target = state.tip + direction * step
         if (direction < 0 and target < END * band) or step < SMALLEST * band:
             break
-        new = _from(state, target, tol)
+        new = _from(grids, state, target, tol)
         if new is not None and not _along(state, new):
             new = None
         if new is not None:  # judged on this grid, before a step too long builds another
             by_force = abs(new.force - state.force) / settings.dp
-            ratio = max(by_force, abs(new.contact[1] - state.contact[1]) / settings.da
+            ratio = max(by_force, abs(new.contact[1] - state.contact[1]) / TIP_DA
                         if step > DA_FLOOR * band else 0.0)
             if ratio > 1.0:
                 step *= 0.8 / ratio
@@ -267,9 +285,9 @@ def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point
         if stable != new.before_fold:  # another mode than the tip's: `follow` goes on
             break
         if not stable:
-            return _fold(trace, state, new, direction, tol)
+            return _fold(grids, trace, state, new, direction, tol)
         past_extremum = past_extremum or state.rates[2] * new.rates[2] < 0.0
-        _insert_force_extremum(trace, state, new, direction, tol)
+        _insert_force_extremum(grids, trace, state, new, direction, tol)
         if not grids.fits(new.surface, new.w, new.delta):
             new = _moved(grids, new, tol, record=not past_extremum)
             if new is None:
@@ -320,10 +338,10 @@ def _moved(grids, state, tol, *, record=True):
     return moved
 
 
-def _root(first, second, rate, tol):
-    """The held state between the held states `first` and `second` (solved on `second`'s
-    surface) where the component `rate` of d(x̄o, δ̄o, P̄)/d(tip) vanishes (Brent from the two
-    states' own rates, which bracket it), or None where Newton fails inside."""
+def _root(grids, first, second, rate, tol):
+    """The held state between the held states `first` and `second` (solved from the nearest
+    state known, `_from`) where the component `rate` of d(x̄o, δ̄o, P̄)/d(tip) vanishes (Brent
+    from the two states' own rates, which bracket it), or None where Newton fails inside."""
     known = [first, second]
 
     def value(tip):
@@ -331,7 +349,7 @@ def _root(first, second, rate, tol):
             if tip == end.tip:
                 return end.rates[rate]
         near = min(known[1:], key=lambda s: abs(s.tip - tip))
-        solved = _from(near, tip, tol)
+        solved = _from(grids, near, tip, tol)
         if solved is None:
             raise _NoRoot
         known.append(solved)
@@ -348,25 +366,25 @@ class _NoRoot(Exception):
     """Newton failed inside a bracket."""
 
 
-def _insert_force_extremum(trace, state, new, direction, tol):
-    """Append the extremum of P̄ between the held `state` and `new` (on one surface) where
-    dP̄/d(tip) changes sign there."""
+def _insert_force_extremum(grids, trace, state, new, direction, tol):
+    """Append the extremum of P̄ between the held `state` and `new` where dP̄/d(tip) changes
+    sign there."""
     if state.rates[2] * new.rates[2] >= 0.0:
         return
-    extremum = _root(state, new, 2, tol)
+    extremum = _root(grids, state, new, 2, tol)
     if extremum is not None and extremum.before_fold:
         trace.append(extremum.surface, extremum.w, extremum.delta, True, extremum.force,
                      extremum.contact, extremum.tangent(direction))
         trace.newton_iterations += extremum.iterations
 
 
-def _fold(trace, last, beyond, direction, tol):
-    """The `TipPath` ending at the fold of δ̄o between the last stable state `last` and `beyond`
-    (on one surface), the extremum of P̄ before it included."""
-    fold = _root(last, beyond, 1, tol)
+def _fold(grids, trace, last, beyond, direction, tol):
+    """The `TipPath` ending at the fold of δ̄o between the last stable state `last` and
+    `beyond`, the extremum of P̄ before it included."""
+    fold = _root(grids, last, beyond, 1, tol)
     if fold is None:  # the last stable state stands in for it
         fold = last
-    _insert_force_extremum(trace, last, fold, direction, tol)
+    _insert_force_extremum(grids, trace, last, fold, direction, tol)
     radius = fold.contact[1]
     values = dict(x=fold.surface.centre_gap(fold.w, fold.delta), p=fold.force, a_c=radius,
                   area=0.0 if radius <= 0.0 else np.pi * radius**2)
