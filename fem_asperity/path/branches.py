@@ -126,18 +126,19 @@ def _piece(surface, w, delta, heading, settings, until, on_point, admissible=Non
     return traced, fold, beyond
 
 
-def land_jump(grids, surface, fold, beyond, settings, counter, landed=None, *,
-              into_contact=False):
+def land_jump(grids, surface, fold, beyond, settings, counter, landed=None):
     """Land past `fold` downhill from the unstable state `beyond`, on the grid of the landing
-    (`grids.land`), or take the (surface, w) `landed` already: (surface, w, Jump). A jump
-    `into_contact` lands from the contact `grids.contact_guess` offers instead, where it has
-    one and that lands in contact lower in energy than `beyond` (at large μ, where the grids
-    follow the edge, the approach has one stable state in contact at the fold's δ̄o)."""
+    (`grids.land`), or take the (surface, w) `landed` already: (surface, w, Jump). Where
+    `grids.landing_guess` offers a state to land from instead (at large μ, where the grids
+    follow the edge: JKR's contact for a jump in, the separated surface for a jump out), the
+    jump lands from there if that ends in contact as the guess is, or separated as it is, lower
+    in energy than `beyond` (at large μ the approach has one stable state in contact at the
+    jump-in's δ̄o, the retraction none at the jump-out's)."""
     delta, before = fold
     if landed is None:
-        guess = grids.contact_guess(surface, beyond, delta) if into_contact else None
+        guess = grids.landing_guess(surface, beyond, delta)
         if guess is not None:
-            landed, its = _land_below(grids, *guess, delta, settings,
+            landed, its = _land_alike(grids, *guess, delta, settings,
                                       surface.energy(beyond, delta))
             counter.newton_iterations += its
     if landed is None:
@@ -152,14 +153,16 @@ def land_jump(grids, surface, fold, beyond, settings, counter, landed=None, *,
                    a_c_after=surface.contact(w, delta)[1], x_after=x)
 
 
-def _land_below(grids, surface, w, delta, settings, energy):
-    """((surface, w) landed from (w, δ̄o) by `grids.land` where that ends in contact (a crack
-    tip) with an energy below `energy`, else None; the Newton iterations (0 if it failed)."""
+def _land_alike(grids, surface, w, delta, settings, energy):
+    """((surface, w) landed from the guess (w, δ̄o) by `grids.land` where that ends in contact
+    (a crack tip) if the guess is, separated if it is, with an energy below `energy`, else
+    None; the Newton iterations (0 if it failed)."""
+    in_contact = surface.crack_tip(w, delta) > 0.0
     try:
         surface, w, iterations = grids.land(surface, w, delta, tol=settings.tol)
     except ContinuationError:
         return None, 0
-    if surface.crack_tip(w, delta) > 0.0 and surface.energy(w, delta) < energy:
+    if (surface.crack_tip(w, delta) > 0.0) == in_contact and surface.energy(w, delta) < energy:
         return (surface, w), iterations
     return None, iterations
 
@@ -211,8 +214,7 @@ def stable_paths(grids: Grids, settings, progress=None):
         if len(jumps_in) >= MAX_JUMPS:
             raise ContinuationError(f"more than {MAX_JUMPS} jumps on approach")
         approach.append(dict(delta=fold[0], **fold[1], branch=len(jumps_in)))
-        surface, w, jump = land_jump(grids, surface, fold, beyond, settings, traced, landed,
-                                     into_contact=True)
+        surface, w, jump = land_jump(grids, surface, fold, beyond, settings, traced, landed)
         jumps_in.append(jump)
         delta, heading = fold[0], _DOWN
     retraction, jumps_out, extra = _retract(grids, starts, settings, branches, traced, progress)

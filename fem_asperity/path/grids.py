@@ -268,17 +268,21 @@ class EdgeGrids:
         raise ContinuationError(f"no stable state on a grid that fits it at δ = {delta:.6g} "
                                 f"({MAX_STAGES} stages of landing)")
 
-    def contact_guess(self, surface, w, delta):
-        """(surface, w): JKR's contact at δ̄o (`reference.jkr_displacement`; the gap 1 ε inside
-        its radius), on the grid of its edges, for a jump into contact from the pre-contact
-        state (w, δ̄o) on `surface` to land from instead (not in equilibrium: `land` it). At
-        large μ the contact it lands in is JKR's but for the cohesive zone, and the descent
-        from the fold crawls (BEM `draft`, μ = 50: 4251 iterations in 22.8 s from the fold, 133
-        in 2.0 s from JKR's contact, P̄ 6.8e-9 apart). None where `surface` is not the
-        pre-contact grid or JKR has no contact wider than the band at δ̄o.
-        test_tracking.py::test_a_jump_in_lands_from_jkrs_contact_where_the_descent_lands."""
+    def landing_guess(self, surface, w, delta):
+        """(surface, w): a state near where a jump from the state (w, δ̄o) on `surface` lands at
+        large μ, to land from instead (not in equilibrium: `land` it). From the pre-contact
+        grid (a jump in), JKR's contact at δ̄o (`reference.jkr_displacement`; the gap 1 ε inside
+        its radius) on the grid of its edges: the contact the jump lands in is JKR's but for
+        the cohesive zone, and the descent from the fold crawls (BEM `draft`, μ = 50: 4251
+        iterations in 22.8 s from the fold, 133 in 2.0 s from JKR's contact, P̄ 6.8e-9 apart);
+        None where JKR has no contact wider than the band at δ̄o. From a grid of the edges (a
+        jump out), the undeformed surface on the pre-contact grid: the descent from the fold
+        peels the neck across many grids.
+        test_tracking.py::test_jumps_land_from_the_guesses_where_the_descent_lands."""
+        if surface is not self.start:
+            return self.start, np.zeros(self.start.r_nodes.size)
         radius = jkr_radius_at_approach(approach=1.0 - delta, mu=self.mu)
-        if surface is not self.start or not radius > self.band:  # nan: no JKR contact
+        if not radius > self.band:  # nan: no JKR contact
             return None
         # the start grid's nodes, and the grid's spacing within a band of the JKR radius
         steps = int(np.ceil(self.band / self.h))
@@ -368,7 +372,7 @@ class FixedGrid:
             raise ContinuationError(f"no stable state found downhill at δ = {delta:.6g}")
         return surface, landed.w, landed.iterations
 
-    def contact_guess(self, surface, w, delta):
+    def landing_guess(self, surface, w, delta):
         """None: on one grid a jump lands downhill from its fold (at small μ the descent is
         short, and JKR's contact is not the one it lands in)."""
         return None
@@ -399,8 +403,8 @@ class Grids(Protocol):
     surface that fits it. regrid(surface, w, δ̄o, tol=...): (surface, w, iterations) of a
     branch's equilibrium that `surface` no longer fits, solved again on one that fits it (by
     Newton where it can: stable, not necessarily downhill).
-    contact_guess(surface, w, δ̄o): (surface, w) of a state in contact for a jump into contact
-    from (w, δ̄o) to land from instead, or None (then it lands from the fold).
+    landing_guess(surface, w, δ̄o): (surface, w) of a state near where a jump from (w, δ̄o)
+    lands, to land from instead, or None (then it lands from the fold).
     record_move(ΔP̄, Δā_c): note the force and contact-radius changes of a state moved to a new
     grid. transplant(nodes, w, δ̄o): (surface, w) of a state given on other radial nodes, moved
     here. summary(): a clause for the curve's message. dofs, largest_nodes: the cost of the
@@ -422,7 +426,7 @@ class Grids(Protocol):
     def regrid(self, surface: LJSurface, w: np.ndarray, delta: float, *,
                tol: float) -> tuple[LJSurface, np.ndarray, int]: ...
 
-    def contact_guess(self, surface: LJSurface, w: np.ndarray,
+    def landing_guess(self, surface: LJSurface, w: np.ndarray,
                       delta: float) -> tuple[LJSurface, np.ndarray] | None: ...
 
     def record_move(self, change: float, radius_change: float) -> None: ...
