@@ -36,14 +36,6 @@ def _curve_and_near(mu, method, accuracy):
     return result, near, partner
 
 
-def _both(mu, method, accuracy):
-    """(curve's events, its events near each event on the estimate's discretisation, the
-    events of the whole solve there)."""
-    result, near, partner = _curve_and_near(mu, method, accuracy)
-    whole = solve.solve_discretised(mu, partner, **OPTIONS).events.records()
-    return result.events.records(), near, whole
-
-
 @pytest.mark.parametrize("mu, method, accuracy", [
     (0.3, "bem", "default"),  # no jumps: extrema and initial contact on one branch
     (3.0, "bem", "default"),  # jumps in and out
@@ -63,27 +55,39 @@ def test_events_near_each_event_are_the_whole_finer_solves(mu, method, accuracy)
     edges as they moved, a window's centred on its state), so they agree to within a tenth of
     the difference, the estimate to 10 %: measured P̄off 3.5e-9 (9 % of the difference) and
     δ̄o at the jump-out 3.0e-9 (0.2 %) once the grids were placed by the edges' motion
-    (3b81e19); 6.9e-10 and 2.4e-9 before."""
-    curve, near, whole = _both(mu, method, accuracy)
+    (3b81e19); 6.9e-10 and 2.4e-9 before. Since the jumps land from guesses (9355f45) the two
+    finer solves' grids differ more, and on them each event agrees within the difference plus
+    what the estimate adds for grids placed otherwise (`solve.FORCES`, `solve.RADII`: the
+    largest change of a move): at μ = 7 P̄off 2.5e-9 apart, ā_c at the jump-in 4.4e-5, with
+    differences 1e-9 and 3.8e-5."""
+    result, near, partner = _curve_and_near(mu, method, accuracy)
+    curve = result.events.records()
+    whole = solve.solve_discretised(mu, partner, **OPTIONS).events.records()
     assert near["missed"] == {} and near["windows"] >= 2
+    tracked = mu >= MU_TRACKING[method]
+    placed = dict.fromkeys(ESTIMATED, 0.0)
+    if tracked:
+        placed |= dict.fromkeys(solve.FORCES, result.regrid_change)
+        placed |= dict.fromkeys(solve.RADII, result.regrid_radius_change)
     for key in ESTIMATED:
         if whole[key] is None:
             assert curve[key] is None or near[key] is None, key
             continue
         difference = abs(curve[key] - whole[key])
-        if mu >= MU_TRACKING[method] and key in LANDED:
+        if tracked and key in LANDED:
             # the landing's grid is centred where the state lands here, where the descent
             # ended there: a different grid (measured at μ = 7: 5% of the difference for the
             # force, 57% for ā_c)
-            assert near[key] == pytest.approx(whole[key], abs=difference), key
+            assert near[key] == pytest.approx(whole[key], abs=difference + placed[key]), key
             continue
         if key == "delta_o_star" and near[key] != near["delta_jump_in"]:
             # contact without a jump: the whole solve interpolates x̄o = 1 between samples (an
             # error of the order of the difference), near_events solves for it exactly
             assert near[key] == pytest.approx(whole[key], abs=difference), key
             continue
-        share = 0.1 if mu >= MU_TRACKING[method] else 1e-3
-        assert near[key] == pytest.approx(whole[key], abs=share * difference + 1e-9), key
+        share = 0.1 if tracked else 1e-3
+        assert near[key] == pytest.approx(whole[key],
+                                          abs=share * difference + 1e-9 + placed[key]), key
 
 
 def test_the_estimate_costs_less_than_the_solve_in_newton_iterations():

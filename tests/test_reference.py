@@ -68,6 +68,17 @@ def test_jkr_displacement_follows_the_sphere_inside_and_boussinesq_far_away(mu):
         2 * mu**1.5 * ref.jkr_force(radius=a, mu=mu) / far, rel=1e-7)
 
 
+def test_jkr_compressive_radius_at_the_pull_off_is_eq_a9s_and_vanishes_near_the_least_radius():
+    mu = 7.0
+    off = ref.jkr_pull_off(mu=mu).radius
+    assert ref.jkr_compressive_radius_at(radius=off, mu=mu) == pytest.approx(
+        ref.jkr_compressive_radius(mu=mu), rel=1e-12)
+    # where the punch's tension outweighs Hertz's pressure everywhere: d/(2a^2) <= -1
+    small = (np.pi / 2) ** (1 / 3) * mu**0.5  # a^(3/2) = sqrt(2 pi) mu^(3/4) / 2
+    assert ref.jkr_compressive_radius_at(radius=small, mu=mu) == pytest.approx(0.0, abs=1e-6)
+    assert ref.jkr_compressive_radius_at(radius=0.9 * small, mu=mu) == 0.0
+
+
 def test_maugis_lambda_is_1157_mu():
     assert ref.MD_LAMBDA_PER_MU == pytest.approx(1.157, abs=5e-4)
 

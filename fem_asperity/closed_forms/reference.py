@@ -55,14 +55,14 @@ def jkr_force(*, radius, mu):
 def jkr_approach(*, radius, mu):
     """JKR approach (indentation) at contact radius ā: δ̄ = ā² − √(2πā) μ^(3/4), in ε."""
     a, mu = in_range("radius", radius, 0.0, closed_lo=True), positive("mu", mu)
-    return a**2 - np.sqrt(2.0 * np.pi * a) * mu**0.75
+    return a**2 + _punch_depth(a, mu)
 
 
 def jkr_radius_at_approach(*, approach, mu):
     """The stable JKR contact radius ā (√(εR)) at approach δ̄ (ε) under displacement control: the
     larger root of `jkr_approach`(ā) = δ̄, at least the radius (π/8)^(1/3) μ^(1/2) where δ̄ is
     least (the fixed-grips pull-off); nan below that least δ̄ (no JKR contact there)."""
-    mu = positive("mu", mu)
+    mu, approach = positive("mu", mu), in_range("approach", approach, -np.inf, np.inf)
     least = (np.pi / 8.0) ** (1.0 / 3.0) * np.sqrt(mu)
     if approach < jkr_approach(radius=least, mu=mu):
         return np.nan
@@ -81,11 +81,24 @@ def jkr_displacement(r, *, radius, mu):
     for the JKR force P̄."""
     a, mu = positive("radius", radius), positive("mu", mu)
     r = np.asarray(r, dtype=float)
-    hertz, punch = a**2, -np.sqrt(2.0 * np.pi * a) * mu**0.75
+    hertz, punch = a**2, _punch_depth(a, mu)
     rho = np.maximum(r / a, 1.0)
     outside = (hertz / np.pi * ((2.0 - rho**2) * np.arcsin(1.0 / rho) + np.sqrt(rho**2 - 1.0))
                + 2.0 * punch / np.pi * np.arcsin(1.0 / rho))
     return np.where(r <= a, hertz + punch - 0.5 * r**2, outside)
+
+
+def jkr_compressive_radius_at(*, radius, mu):
+    """Radius (√(εR)) of the compressive zone of JKR contact of radius ā, where Hertz's pressure
+    and the flat punch's tension cancel: ā √(1 + d/(2ā²)) for the punch depth d = −√(2πā)
+    μ^(3/4); 0 where the tension wins everywhere. At the pull-off radius, eq. A9's ā/√3."""
+    a, mu = positive("radius", radius), positive("mu", mu)
+    return a * np.sqrt(max(1.0 + _punch_depth(a, mu) / (2.0 * a**2), 0.0))
+
+
+def _punch_depth(radius, mu):
+    """JKR's flat-punch depth −√(2πā) μ^(3/4) (ε) at contact radius ā, as `jkr_approach`'s."""
+    return -np.sqrt(2.0 * np.pi * radius) * mu**0.75
 
 
 def jkr_pull_off(*, mu):

@@ -126,24 +126,24 @@ def _piece(surface, w, delta, heading, settings, until, on_point, admissible=Non
     return traced, fold, beyond
 
 
-def land_jump(grids, surface, fold, beyond, settings, counter, landed=None):
+def land_jump(grids, surface, fold, beyond, settings, counter, landed=None, *,
+              into_contact):
     """Land past `fold` downhill from the unstable state `beyond`, on the grid of the landing
     (`grids.land`), or take the (surface, w) `landed` already: (surface, w, Jump). Where
-    `grids.landing_guess` offers a state to land from instead (at large μ, where the grids
-    follow the edge: JKR's contact for a jump in, the separated surface for a jump out), the
-    jump lands from there if that ends in contact as the guess is, or separated as it is, lower
-    in energy than `beyond` (at large μ the approach has one stable state in contact at the
-    jump-in's δ̄o, the retraction none at the jump-out's)."""
+    `grids.landing_guess` offers a state to land from instead (at large μ: JKR's contact for a
+    jump `into_contact`, the undeformed surface for a jump out), the jump lands from there if
+    that ends in contact (`into_contact`) or separated (not), lower in energy than `beyond`
+    (a check that it lies downhill, not that the descent from the fold ends there: at large μ
+    the approach has one stable state in contact at the jump-in's δ̄o, the retraction none at
+    the jump-out's)."""
     delta, before = fold
     if landed is None:
-        guess = grids.landing_guess(surface, beyond, delta)
-        if guess is not None:
-            landed, its = _land_alike(grids, *guess, delta, settings,
-                                      surface.energy(beyond, delta))
-            counter.newton_iterations += its
+        landed, iterations = _land_from_guess(grids, surface, beyond, delta, settings,
+                                              into_contact)
+        counter.newton_iterations += iterations
     if landed is None:
-        surface, w, its = grids.land(surface, beyond, delta, tol=settings.tol)
-        counter.newton_iterations += its
+        surface, w, iterations = grids.land(surface, beyond, delta, tol=settings.tol)
+        counter.newton_iterations += iterations
     else:
         surface, w = landed
     x, p = surface.centre_gap(w, delta), surface.force(w, delta)
@@ -153,17 +153,21 @@ def land_jump(grids, surface, fold, beyond, settings, counter, landed=None):
                    a_c_after=surface.contact(w, delta)[1], x_after=x)
 
 
-def _land_alike(grids, surface, w, delta, settings, energy):
-    """((surface, w) landed from the guess (w, δ̄o) by `grids.land` where that ends in contact
-    (a crack tip) if the guess is, separated if it is, with an energy below `energy`, else
-    None; the Newton iterations (0 if it failed)."""
-    in_contact = surface.crack_tip(w, delta) > 0.0
+def _land_from_guess(grids, surface, beyond, delta, settings, into_contact):
+    """((surface, w) landed at δ̄o from `grids.landing_guess` where it offers one and the
+    landing ends in contact (a crack tip) if `into_contact`, separated if not, with an energy
+    below that of `beyond` on `surface`; else None), and the Newton iterations spent (those of
+    a landing that failed are not known: 0)."""
     try:
-        surface, w, iterations = grids.land(surface, w, delta, tol=settings.tol)
+        guess = grids.landing_guess(surface, delta, into_contact=into_contact)
+        if guess is None:
+            return None, 0
+        landed, w, iterations = grids.land(*guess, delta, tol=settings.tol)
     except ContinuationError:
         return None, 0
-    if (surface.crack_tip(w, delta) > 0.0) == in_contact and surface.energy(w, delta) < energy:
-        return (surface, w), iterations
+    if ((landed.crack_tip(w, delta) > 0.0) == into_contact
+            and landed.energy(w, delta) < surface.energy(beyond, delta)):
+        return (landed, w), iterations
     return None, iterations
 
 
@@ -214,7 +218,8 @@ def stable_paths(grids: Grids, settings, progress=None):
         if len(jumps_in) >= MAX_JUMPS:
             raise ContinuationError(f"more than {MAX_JUMPS} jumps on approach")
         approach.append(dict(delta=fold[0], **fold[1], branch=len(jumps_in)))
-        surface, w, jump = land_jump(grids, surface, fold, beyond, settings, traced, landed)
+        surface, w, jump = land_jump(grids, surface, fold, beyond, settings, traced, landed,
+                                     into_contact=True)
         jumps_in.append(jump)
         delta, heading = fold[0], _DOWN
     retraction, jumps_out, extra = _retract(grids, starts, settings, branches, traced, progress)
@@ -266,7 +271,8 @@ def _retract(grids, starts, settings, branches, counter, progress):
             if len(jumps) >= MAX_JUMPS:
                 raise ContinuationError(f"more than {MAX_JUMPS} jumps on retraction")
             rows.append(dict(delta=fold[0], **fold[1], branch=len(jumps)))
-            surface, w, jump = land_jump(grids, surface, fold, beyond, settings, counter, landed)
+            surface, w, jump = land_jump(grids, surface, fold, beyond, settings, counter, landed,
+                                         into_contact=False)
             jumps.append(jump)
             delta, skip = fold[0], 0
             known = _approach_branch(branches, delta, jump.x_after,

@@ -28,7 +28,11 @@ from typing import Protocol, runtime_checkable
 import numpy as np
 
 from ..closed_forms.lj import scaled_traction_slope
-from ..closed_forms.reference import jkr_displacement, jkr_radius_at_approach
+from ..closed_forms.reference import (
+    jkr_compressive_radius_at,
+    jkr_displacement,
+    jkr_radius_at_approach,
+)
 from ..plumbing.errors import ContinuationError, InputError
 from ..solids.bem import BoussinesqSurface, radial_grid
 from .continuation import correct_at_delta
@@ -61,6 +65,16 @@ FIT, AHEAD, STILL = 0.75, 0.65, 0.05
 #: test_near_events.py::test_events_near_each_event_are_the_whole_finer_solves.
 FE_FIT, FE_AHEAD = 0.5, 0.4
 _STIFFEST_SLOPE = float(scaled_traction_slope(TIP_GAP))
+
+
+#: Jumps land from a guess (`EdgeGrids.landing_guess`) from μ = GUESS_MU on, where JKR's
+#: contact is near the jump-in's and a jump out leaves no contact (5: where the FE's grids
+#: follow the edge by default; at μ = 8, BEM `draft`, the landings are the descent's,
+#: test_tracking.py::test_jumps_land_from_the_guesses_where_the_descent_lands). JKR's guess has
+#: the gap GUESS_GAP (ε) below 1 inside its compressive radius and above 1 out to its radius,
+#: so that its ā_c (where the gap passes 1) is that radius: at exactly 1 it was rounding's, and
+#: the first grid's band lay elsewhere. Not pinned by a test.
+GUESS_MU, GUESS_GAP = 5.0, 1e-3
 
 
 def spring_ratio(gap):
@@ -268,28 +282,34 @@ class EdgeGrids:
         raise ContinuationError(f"no stable state on a grid that fits it at δ = {delta:.6g} "
                                 f"({MAX_STAGES} stages of landing)")
 
-    def landing_guess(self, surface, w, delta):
-        """(surface, w): a state near where a jump from the state (w, δ̄o) on `surface` lands at
-        large μ, to land from instead (not in equilibrium: `land` it). From the pre-contact
-        grid (a jump in), JKR's contact at δ̄o (`reference.jkr_displacement`; the gap 1 ε inside
-        its radius) on the grid of its edges: the contact the jump lands in is JKR's but for
-        the cohesive zone, and the descent from the fold crawls (BEM `draft`, μ = 50: 4251
-        iterations in 22.8 s from the fold, 133 in 2.0 s from JKR's contact, P̄ 6.8e-9 apart);
-        None where JKR has no contact wider than the band at δ̄o. From a grid of the edges (a
-        jump out), the undeformed surface on the pre-contact grid: the descent from the fold
-        peels the neck across many grids.
+    def landing_guess(self, surface, delta, *, into_contact):
+        """(surface, w): a state near where a jump at large μ (from GUESS_MU on) from a state on
+        `surface` lands at δ̄o, to land from instead of the fold (not in equilibrium: `land`
+        it), or None. `into_contact` (a jump in, from the pre-contact grid): JKR's contact at δ̄o
+        (`reference.jkr_displacement`, the gap just below 1 ε inside its compressive radius and
+        just above out to its radius) on the grid of its edges; the contact the jump lands in is
+        JKR's but for the cohesive zone, and the descent from the fold crawls (BEM `draft`, μ =
+        50: 4251 iterations in 22.8 s from the fold, 133 in 2.0 s from JKR's contact, P̄ 6.8e-9
+        apart); None where JKR has no contact wider than the band at δ̄o. Else (a jump out, from
+        a grid of the edges): the undeformed surface on the pre-contact grid, where δ̄o leaves it
+        without a crack tip; from the fold the descent peels the neck across many grids.
         test_tracking.py::test_jumps_land_from_the_guesses_where_the_descent_lands."""
-        if surface is not self.start:
-            return self.start, np.zeros(self.start.r_nodes.size)
+        if self.mu < GUESS_MU or (surface is self.start) != into_contact:
+            return None
+        if not into_contact:
+            return (self.start, np.zeros(self.start.r_nodes.size)) if delta > TIP_GAP else None
         radius = jkr_radius_at_approach(approach=1.0 - delta, mu=self.mu)
         if not radius > self.band:  # nan: no JKR contact
             return None
-        # the start grid's nodes, and the grid's spacing within a band of the JKR radius
-        steps = int(np.ceil(self.band / self.h))
-        nodes = np.union1d(self.start.r_nodes, radius + self.h * np.arange(-steps, steps + 1))
-        shape = SurfaceShape(nodes, radius_ratio=self.radius_ratio)
-        w = np.where(nodes <= radius, delta + shape.node_profile - 1.0,
-                     -jkr_displacement(nodes, radius=radius, mu=self.mu))
+        compressive = jkr_compressive_radius_at(radius=radius, mu=self.mu)
+        # the start grid's nodes, and the grid's spacing within a band of either radius
+        steps = self.h * np.arange(-np.ceil(self.band / self.h), np.ceil(self.band / self.h) + 1)
+        nodes = np.union1d(self.start.r_nodes, np.r_[compressive + steps, radius + steps])
+        shape = SurfaceShape(nodes[nodes >= 0.0], radius_ratio=self.radius_ratio)
+        # the gap inside from the surface's own profile (JKR's is Derjaguin's parabola)
+        gap = np.where(shape.r_nodes < compressive, 1.0 - GUESS_GAP, 1.0 + GUESS_GAP)
+        w = np.where(shape.r_nodes <= radius, delta + shape.node_profile - gap,
+                     -jkr_displacement(shape.r_nodes, radius=radius, mu=self.mu))
         return self.move(shape, w, delta)
 
     def regrid(self, surface, w, delta, *, tol=1e-9):
@@ -372,9 +392,9 @@ class FixedGrid:
             raise ContinuationError(f"no stable state found downhill at δ = {delta:.6g}")
         return surface, landed.w, landed.iterations
 
-    def landing_guess(self, surface, w, delta):
-        """None: on one grid a jump lands downhill from its fold (at small μ the descent is
-        short, and JKR's contact is not the one it lands in)."""
+    def landing_guess(self, surface, delta, *, into_contact):
+        """None: on one grid a jump lands downhill from its fold (as a rule at small μ, where
+        the descent is short and JKR's contact not the one it lands in)."""
         return None
 
     def regrid(self, surface, w, delta, *, tol=1e-9):
@@ -403,8 +423,9 @@ class Grids(Protocol):
     surface that fits it. regrid(surface, w, δ̄o, tol=...): (surface, w, iterations) of a
     branch's equilibrium that `surface` no longer fits, solved again on one that fits it (by
     Newton where it can: stable, not necessarily downhill).
-    landing_guess(surface, w, δ̄o): (surface, w) of a state near where a jump from (w, δ̄o)
-    lands, to land from instead, or None (then it lands from the fold).
+    landing_guess(surface, δ̄o, into_contact=...): (surface, w) of a state near where a jump
+    from a state on `surface` lands, to land from instead, or None (then it lands from the
+    fold).
     record_move(ΔP̄, Δā_c): note the force and contact-radius changes of a state moved to a new
     grid. transplant(nodes, w, δ̄o): (surface, w) of a state given on other radial nodes, moved
     here. summary(): a clause for the curve's message. dofs, largest_nodes: the cost of the
@@ -426,8 +447,8 @@ class Grids(Protocol):
     def regrid(self, surface: LJSurface, w: np.ndarray, delta: float, *,
                tol: float) -> tuple[LJSurface, np.ndarray, int]: ...
 
-    def landing_guess(self, surface: LJSurface, w: np.ndarray,
-                      delta: float) -> tuple[LJSurface, np.ndarray] | None: ...
+    def landing_guess(self, surface: LJSurface, delta: float, *,
+                      into_contact: bool) -> tuple[LJSurface, np.ndarray] | None: ...
 
     def record_move(self, change: float, radius_change: float) -> None: ...
 

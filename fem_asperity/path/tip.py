@@ -198,9 +198,8 @@ def held(surface, w, delta, tip, *, tol):
 
 def _from(grids, state, tip, tol):
     """`held` at `tip` from the held `state`, its gaps moved along with the tip and δ̄o along its
-    rate; on the grid of the moved state's edges where `state`'s grid does not admit it (then
-    the gaps are moved onto that grid's nodes: solved on the old grid first, its tip on coarse
-    elements, the state needed solving again on the new one)."""
+    rate. Where `state`'s grid does not admit that prediction (its tip would lie on coarse
+    elements), on the grid of the prediction's edges, the gaps moved onto that grid's nodes."""
     shift = tip - state.tip
     delta = state.delta + state.rates[1] * shift
     surface = state.surface
@@ -233,8 +232,8 @@ def tip_direction(grids, surface, w, delta, heading):
     bit). With that state made the landing, and each move of the approach measured (the state
     moved before the step that leaves its band), every estimate was there, but the curve took
     longer at μ ≤ 10 (BEM `default` μ = 10 with its estimate 6.6 → 7.4 s) and gained at μ = 50
-    only (`draft` 228 → 189 s; unmeasured, 132 s): a grid per step, and a Newton solve per
-    move."""
+    only (`draft` 228 → 189 s; 132 s with the moves not measured): a grid per step, and a
+    Newton solve per move."""
     if not (heading[1] > 0.0 and isinstance(grids, EdgeGrids)
             and surface.crack_tip(w, delta) > END * grids.band):
         return 0
@@ -270,7 +269,7 @@ def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point
         new = _from(grids, state, target, tol)
         if new is not None and not _along(state, new):
             new = None
-        if new is not None:  # judged on this grid, before a step too long builds another
+        if new is not None:
             by_force = abs(new.force - state.force) / settings.dp
             ratio = max(by_force, abs(new.contact[1] - state.contact[1]) / TIP_DA
                         if step > DA_FLOOR * band else 0.0)
