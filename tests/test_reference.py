@@ -68,6 +68,21 @@ def test_jkr_displacement_follows_the_sphere_inside_and_boussinesq_far_away(mu):
         2 * mu**1.5 * ref.jkr_force(radius=a, mu=mu) / far, rel=1e-7)
 
 
+def test_jkr_forms_refuse_bad_input_with_one_clear_error():
+    with pytest.raises(InputError, match="approach"):
+        ref.jkr_radius_at_approach(approach=np.nan, mu=1.0)
+    with pytest.raises(InputError, match="approach must be one number"):
+        ref.jkr_radius_at_approach(approach=[0.0, 1.0], mu=1.0)
+    with pytest.raises(InputError, match="mu"):
+        ref.jkr_radius_at_approach(approach=0.0, mu=-1.0)
+    with pytest.raises(InputError, match="r must"):
+        ref.jkr_displacement([1.0, -1.0], radius=1.0, mu=1.0)
+    with pytest.raises(InputError, match="radius"):
+        ref.jkr_displacement(1.0, radius=0.0, mu=1.0)
+    with pytest.raises(InputError, match="radius"):
+        ref.jkr_compressive_radius_at(radius=np.inf, mu=1.0)
+
+
 def test_jkr_compressive_radius_at_the_pull_off_is_eq_a9s_and_vanishes_near_the_least_radius():
     mu = 7.0
     off = ref.jkr_pull_off(mu=mu).radius
@@ -77,6 +92,8 @@ def test_jkr_compressive_radius_at_the_pull_off_is_eq_a9s_and_vanishes_near_the_
     small = (np.pi / 2) ** (1 / 3) * mu**0.5  # a^(3/2) = sqrt(2 pi) mu^(3/4) / 2
     assert ref.jkr_compressive_radius_at(radius=small, mu=mu) == pytest.approx(0.0, abs=1e-6)
     assert ref.jkr_compressive_radius_at(radius=0.9 * small, mu=mu) == 0.0
+    both = ref.jkr_compressive_radius_at(radius=np.array([off, 0.9 * small]), mu=mu)
+    assert both == pytest.approx([ref.jkr_compressive_radius(mu=mu), 0.0], rel=1e-12)
 
 
 def test_maugis_lambda_is_1157_mu():

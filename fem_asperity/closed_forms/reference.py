@@ -61,8 +61,12 @@ def jkr_approach(*, radius, mu):
 def jkr_radius_at_approach(*, approach, mu):
     """The stable JKR contact radius ā (√(εR)) at approach δ̄ (ε) under displacement control: the
     larger root of `jkr_approach`(ā) = δ̄, at least the radius (π/8)^(1/3) μ^(1/2) where δ̄ is
-    least (the fixed-grips pull-off); nan below that least δ̄ (no JKR contact there)."""
-    mu, approach = positive("mu", mu), in_range("approach", approach, -np.inf, np.inf)
+    least (the fixed-grips pull-off); nan below that least δ̄ (no JKR contact there). One δ̄ at
+    a time."""
+    if np.ndim(approach):
+        raise InputError(f"approach must be one number; got an array of shape "
+                         f"{np.shape(approach)}")
+    mu, approach = positive("mu", mu), in_range("approach", approach)
     least = (np.pi / 8.0) ** (1.0 / 3.0) * np.sqrt(mu)
     if approach < jkr_approach(radius=least, mu=mu):
         return np.nan
@@ -80,7 +84,7 @@ def jkr_displacement(r, *, radius, mu):
     Mechanics, eqs. 3.42b and 3.36; E* = 1). Far away it tends to Boussinesq's 2μ^(3/2) P̄/r
     for the JKR force P̄."""
     a, mu = positive("radius", radius), positive("mu", mu)
-    r = np.asarray(r, dtype=float)
+    r = in_range("r", r, 0.0, closed_lo=True)
     hertz, punch = a**2, _punch_depth(a, mu)
     rho = np.maximum(r / a, 1.0)
     outside = (hertz / np.pi * ((2.0 - rho**2) * np.arcsin(1.0 / rho) + np.sqrt(rho**2 - 1.0))
@@ -93,7 +97,7 @@ def jkr_compressive_radius_at(*, radius, mu):
     and the flat punch's tension cancel: ā √(1 + d/(2ā²)) for the punch depth d = −√(2πā)
     μ^(3/4); 0 where the tension wins everywhere. At the pull-off radius, eq. A9's ā/√3."""
     a, mu = positive("radius", radius), positive("mu", mu)
-    return a * np.sqrt(max(1.0 + _punch_depth(a, mu) / (2.0 * a**2), 0.0))
+    return a * np.sqrt(np.maximum(1.0 + _punch_depth(a, mu) / (2.0 * a**2), 0.0))
 
 
 def _punch_depth(radius, mu):

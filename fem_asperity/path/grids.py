@@ -289,7 +289,7 @@ class EdgeGrids:
         (`reference.jkr_displacement`, the gap just below 1 ε inside its compressive radius and
         just above out to its radius) on the grid of its edges; the contact the jump lands in is
         JKR's but for the cohesive zone, and the descent from the fold crawls (BEM `draft`, μ =
-        50: 4251 iterations in 22.8 s from the fold, 133 in 2.0 s from JKR's contact, P̄ 6.8e-9
+        50: 4251 iterations in 22.8 s from the fold, 118 in 2.0 s from JKR's contact, P̄ 6.8e-9
         apart); None where JKR has no contact wider than the band at δ̄o. Else (a jump out, from
         a grid of the edges): the undeformed surface on the pre-contact grid, where δ̄o leaves it
         without a crack tip; from the fold the descent peels the neck across many grids.
@@ -303,7 +303,8 @@ class EdgeGrids:
             return None
         compressive = jkr_compressive_radius_at(radius=radius, mu=self.mu)
         # the start grid's nodes, and the grid's spacing within a band of either radius
-        steps = self.h * np.arange(-np.ceil(self.band / self.h), np.ceil(self.band / self.h) + 1)
+        count = np.ceil(self.band / self.h)
+        steps = self.h * np.arange(-count, count + 1)
         nodes = np.union1d(self.start.r_nodes, np.r_[compressive + steps, radius + steps])
         shape = SurfaceShape(nodes[nodes >= 0.0], radius_ratio=self.radius_ratio)
         # the gap inside from the surface's own profile (JKR's is Derjaguin's parabola)
