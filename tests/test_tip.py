@@ -95,3 +95,20 @@ def test_the_peel_gives_the_arc_length_paths_events(monkeypatch):
     a, b = peeled.events.records(), arc.events.records()
     for key in ("p_off", "delta_jump_out"):
         assert abs(a[key] - b[key]) <= peeled.error_estimate[key], key
+
+
+def test_the_approach_followed_in_the_tip_gives_the_arc_length_paths_events(monkeypatch):
+    """BEM `draft` at μ = 8: the approach after the jump-in followed in the tip (as from μ ≈ 27
+    on, `tip.APPROACH_BANDS`, forced here) against the same branch followed in arc length (the
+    default at this μ): every event of either lies within the other's error estimate, and each
+    has one (the path's first point is the landing itself, `tip._as_held`)."""
+    from fem_asperity.path import tip
+
+    events = ("p_max", "delta_oc", "a_c", "p_off", "delta_jump_out")
+    arc = solve_curve(8.0, method="bem", accuracy="draft")
+    monkeypatch.setattr(tip, "APPROACH_BANDS", 0.0)
+    tipped = solve_curve(8.0, method="bem", accuracy="draft")
+    a, b = tipped.events.records(), arc.events.records()
+    for key in events:
+        assert tipped.error_estimate.get(key) is not None, key
+        assert abs(a[key] - b[key]) <= min(tipped.error_estimate[key], arc.error_estimate[key]), key

@@ -1,21 +1,24 @@
 """Stable branches in contact at large μ, followed in the crack tip's radius.
 
 At large μ the stable branches in contact move the crack tip over many bands of the grids that
-follow the edge: the retraction peels the contact while δ̄o and P̄ hardly move (`tip_direction`:
-the retraction only, so far). Arc length in (x̄o, δ̄o, P̄) (`continuation.follow`) then takes
-short steps, many of which Newton fails on (BEM `draft`, μ = 20: on the retraction 532 points
-and 3084 Newton iterations from the jump-in's landing to the jump-out). Here the tip's radius is
-the parameter instead: each state holds its tip at a given radius (the node gaps, interpolated
-linearly, equal TIP_GAP there: a linear constraint, as in `landing.pinned`) with δ̄o free, and is
-predicted by moving the last state's gaps along with the tip (`translated`: a peeling front
-moves nearly unchanged), from which Newton converges in a few iterations (there: 157 points and
-516 Newton iterations; P̄off and the jump-out's δ̄o within 4e-8 of the arc length's). δ̄o has
-its fold, the jump-out, where dδ̄o/d(tip) = 0, and P̄ its extremum where dP̄/d(tip) = 0; both
-are found by Brent's method on those derivatives (an equilibrium and its rates per evaluation).
+follow the edge: the retraction peels the contact while δ̄o and P̄ hardly move, and the approach
+spreads it (`tip_direction`: the approach only where the band is narrow). Arc length in (x̄o,
+δ̄o, P̄) (`continuation.follow`) then takes short steps, many of which Newton fails on (BEM
+`draft`, μ = 20: on the retraction 532 points and 3084 Newton iterations from the jump-in's
+landing to the jump-out). Here the tip's radius is the parameter instead: each state holds its
+tip at a given radius (the node gaps, interpolated linearly, equal TIP_GAP there: a linear
+constraint, as in `landing.pinned`) with δ̄o free, and is predicted by moving the last state's
+gaps along with the tip (`translated`: a peeling front moves nearly unchanged), from which
+Newton converges in a few iterations (there: 157 points and 516 Newton iterations; P̄off and the
+jump-out's δ̄o within 4e-8 of the arc length's). δ̄o has its fold, the jump-out, where
+dδ̄o/d(tip) = 0, and P̄ its extremum where dP̄/d(tip) = 0; both are found by Brent's method on
+those derivatives (an equilibrium and its rates per evaluation).
 
-A state stays on its grid while the grid fits it (`grids.EdgeGrids.fits`); then it is solved
-again, its tip held, on the grid of its edges, and the change of P̄ recorded (`record_move`), as
-`branches.follow_branch` does.
+A prediction its grid does not admit is solved on a grid built for it (`_from`), so a step may
+cross several bands. A state its grid no longer fits (`grids.EdgeGrids.fits`) is solved again,
+its tip held, on the grid of its edges, and the change of P̄ recorded (`record_move`), as
+`branches.follow_branch` does; so is every MEASURED_EVERY-th state, on a grid placed
+otherwise, for the error estimate's grid-placement term.
 """
 
 from typing import NamedTuple
@@ -37,10 +40,18 @@ from .landing import converged, pin_nodes, pin_penalty
 from .surface import TIP_GAP, gap_keeping_step
 
 #: The first step of the tip, in bands of the grids; a step is grown by GROWTH after a point that
-#: took at most EASY Newton iterations and halved after a failure, never beyond a band (then the
-#: predicted state still lies in the grid's fine zone, `admits`), nor below SMALLEST bands (then
-#: the path hands over to `continuation.follow`). Not pinned by a test.
-FIRST_STEP, GROWTH, EASY, SMALLEST = 0.25, 1.5, 3, 1.0 / 64.0
+#: took at most EASY Newton iterations and halved after a failure, never beyond LONGEST bands,
+#: nor below SMALLEST bands (then the path hands over to `continuation.follow`). A prediction
+#: beyond its grid's band is solved on a grid built for it (`_from`), so the steps are the
+#: curve's own (P̄ and ā_c, below) rather than a band's: BEM `draft`, μ = 50, with the approach
+#: followed in the tip, LONGEST 8 instead of 1 took the tip's steps from 0.7-0.9 of a band to
+#: 4.5-6.8 (ā_c's limit); beyond 8 the P̄ and ā_c limits hold them anyway. Not pinned by a test.
+FIRST_STEP, GROWTH, EASY, SMALLEST, LONGEST = 0.25, 1.5, 3, 1.0 / 64.0, 8.0
+#: ā_c of a prediction is placed (`_from`) by its rate per tip of the last step, clamped to
+#: [0, RATE_CAP]: where the compressive contact vanishes (the retraction) that rate is
+#: unbounded, and a grid centred far off would not fit the state (it is then moved,
+#: `_moved`). Not pinned by a test.
+RATE_CAP = 4.0
 #: Steps are shortened where ā_c changes by more than TIP_DA (√(Rε)), down to DA_FLOOR bands, no
 #: further: the compressive contact can vanish within such a step while δ̄o and P̄ change
 #: smoothly (BEM `draft`, μ = 20: ā_c fell from 1.9 to 0 as the tip receded by 0.17 √(Rε), 1.9
@@ -60,6 +71,16 @@ END = 3.0
 #: A step's change of (x̄o, δ̄o, P̄) may differ from its prediction by the tip's rates by at most
 #: ALONG of the prediction (`_along`), or it is retried shorter. Not pinned by a test.
 ALONG = 0.5
+#: Every MEASURED_EVERY-th state before P̄'s extremum that fits its grid is solved again on a grid
+#: placed otherwise (`_moved`) and the change recorded: the grids are built for each
+#: prediction (`_from`), so that the states fit them and few are moved, and those moves alone
+#: no longer bound the grids' placement (BEM `draft`, μ = 30: none recorded). Not pinned by a
+#: test.
+MEASURED_EVERY = 4
+#: The approach after a jump-in is followed in the tip where TIP_DA spans at least
+#: APPROACH_BANDS bands (`tip_direction`): there a tip's steps can be longer than the arc
+#: length's, which its grid's band holds to a band.
+APPROACH_BANDS = 2.0
 #: Brent's tolerance on the tip's radius of an extremum of P̄ or δ̄o (√(Rε)): the values there are
 #: quadratic in its error. Not pinned by a test.
 XTOL = 1e-9
@@ -196,16 +217,32 @@ def held(surface, w, delta, tip, *, tol):
     return None
 
 
-def _from(grids, state, tip, tol):
+def _as_held(surface, w, delta):
+    """The equilibrium (w, δ̄o) itself as a `Held` at its own crack tip, its rates from the
+    bordered matrix there: a path's first point is then the state it starts from to the bit.
+    Solved again with its tip held (`held`), the landing of a jump-in moved by Newton's last
+    increment, and the error estimate's finer trace near P̄max, read at the landing, found that
+    event at its window's end: no estimate of P̄max, δ̄oc and ā_c (BEM `draft`, μ = 8, the
+    approach followed in the tip)."""
+    tip = surface.crack_tip(w, delta)
+    pin, _, dc_dtip = _constraint(surface, w, delta, tip)
+    rates = _Bordered(surface, w, delta, pin).rates(dc_dtip)
+    return Held(surface, w, float(delta), tip, rates, 0)
+
+
+def _from(grids, state, tip, tol, radius_rate=1.0):
     """`held` at `tip` from the held `state`, its gaps moved along with the tip and δ̄o along its
     rate. Where `state`'s grid does not admit that prediction (its tip would lie on coarse
-    elements), on the grid of the prediction's edges, the gaps moved onto that grid's nodes."""
+    elements), on a grid built for it: centred on its tip and on ā_c moved by `radius_rate`
+    times the tip's shift (ā_c need not move with the tip: on the retraction at μ = 20 it
+    recedes about twice as fast), the gaps moved onto that grid's nodes."""
     shift = tip - state.tip
     delta = state.delta + state.rates[1] * shift
     surface = state.surface
     w = surface.translated(state.w, state.delta, shift, delta)
     if not grids.admits(surface, w, delta):
-        surface = grids.move(surface, w, delta)[0]
+        radius = state.contact[1] + radius_rate * shift
+        surface = grids.move(surface, w, delta, radius=radius)[0]
         w = state.surface.translated(state.w, state.delta, shift, delta, onto=surface)
     return held(surface, w, delta, tip, tol=tol)
 
@@ -224,19 +261,16 @@ class TipPath(NamedTuple):
 
 def tip_direction(grids, surface, w, delta, heading):
     """How the crack tip moves along the stable branch from (w, δ̄o) with the `heading` in
-    (x̄o, δ̄o, P̄), where the branch is followed in the tip: −1, receding, on a retraction (δ̄o
-    rising) on grids that follow the edge with a crack tip beyond END bands; else 0. Not the
-    approach after a jump-in: there the finer discretisation of the error estimate, followed in
-    the tip, found P̄max at an end of its window (BEM `draft`, μ = 8: no estimate of P̄max,
-    δ̄oc and ā_c; the path's first state, held at the landing's tip, was not the landing to the
-    bit). With that state made the landing, and each move of the approach measured (the state
-    moved before the step that leaves its band), every estimate was there, but the curve took
-    longer at μ ≤ 10 (BEM `default` μ = 10 with its estimate 6.6 → 7.4 s) and gained at μ = 50
-    only (`draft` 228 → 189 s; 132 s with the moves not measured): a grid per step, and a
-    Newton solve per move."""
-    if not (heading[1] > 0.0 and isinstance(grids, EdgeGrids)
-            and surface.crack_tip(w, delta) > END * grids.band):
+    (x̄o, δ̄o, P̄), where the branch is followed in the tip, on grids that follow the edge with a
+    crack tip beyond END bands: −1, receding, on a retraction (δ̄o rising); +1, advancing, on an
+    approach (δ̄o falling) where TIP_DA spans at least APPROACH_BANDS bands; else 0. Below, a
+    grid per step of at most about a band costs more than the arc length's grids, which serve
+    about 1.5 bands each (BEM `draft`, μ = 20, 1.2 bands: 177 grids against 121, and longer; at
+    μ = 30, 2.7 bands, and μ = 50, 7.4, shorter: `benchmarks/large_mu.py` times them)."""
+    if not (isinstance(grids, EdgeGrids) and surface.crack_tip(w, delta) > END * grids.band):
         return 0
+    if heading[1] < 0.0:
+        return 1 if TIP_DA >= APPROACH_BANDS * grids.band else 0
     return -1
 
 
@@ -248,8 +282,7 @@ def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point
     `follow`'s: P̄ and ā_c change by at most settings.dp and TIP_DA between points.
     `on_point(trace)` after each point. Returns a `TipPath`."""
     band, tol = grids.band, settings.tol
-    state = held(surface, w, delta, surface.crack_tip(w, delta), tol=tol)
-    trace = Trace()
+    state, trace = _as_held(surface, w, delta), Trace()
 
     def record(new):
         trace.append(new.surface, new.w, new.delta, True, new.force, new.contact,
@@ -258,15 +291,15 @@ def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point
         if on_point is not None:
             on_point(trace)
 
-    if state is None or not (state.before_fold and _stable(state)):
+    if not (state.before_fold and _stable(state)):
         return TipPath(trace, None, None, surface, None)
     record(state)
-    step, past_extremum = FIRST_STEP * band, False
+    step, past_extremum, radius_rate = FIRST_STEP * band, False, 1.0
     while not until(trace):
         target = state.tip + direction * step
         if (direction < 0 and target < END * band) or step < SMALLEST * band:
             break
-        new = _from(grids, state, target, tol)
+        new = _from(grids, state, target, tol, radius_rate)
         if new is not None and not _along(state, new):
             new = None
         if new is not None:
@@ -286,20 +319,39 @@ def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point
             trace.rejected_steps += 1
             continue
         stable = _stable(new)
+        if not (stable and new.before_fold) and step > band:
+            # near the fold, steps of at most a band, as before LONGEST: from a longer one
+            # Brent's bracket held states of another branch (BEM `draft`, μ = 50: a fold
+            # 2.3e-5 below the last stable state's δ̄o), or the step went past the fold and
+            # back (stable, δ̄o rising) and `follow` failed there
+            step *= 0.5
+            trace.rejected_steps += 1
+            continue
         if stable != new.before_fold:  # another mode than the tip's: `follow` goes on
             break
         if not stable:
             return _fold(grids, trace, state, new, direction, tol)
         past_extremum = past_extremum or state.rates[2] * new.rates[2] < 0.0
         _insert_force_extremum(grids, trace, state, new, direction, tol)
-        if not grids.fits(new.surface, new.w, new.delta):
-            new = _moved(grids, new, tol, record=not past_extremum)
-            if new is None:
+        fits = grids.fits(new.surface, new.w, new.delta)
+        if not fits or (not past_extremum and len(trace.delta) % MEASURED_EVERY == 0):
+            again = _moved(grids, new, tol, record=not past_extremum, radius=direction > 0)
+            if again is None and not fits:
                 break
+            new = new if fits else again
+        radius_rate = _radius_rate(state, new)
         state = new
         record(state)
-        step = min(step * (GROWTH if state.iterations <= EASY else 1.0), band)
+        step = min(step * (GROWTH if state.iterations <= EASY else 1.0), LONGEST * band)
     return TipPath(trace, None, None, state.surface, state)
+
+
+def _radius_rate(first, second):
+    """dā_c/d(tip) between the held states `first` and `second` (1 where the tip did not move),
+    clamped to [0, RATE_CAP]."""
+    shift = second.tip - first.tip
+    rate = (second.contact[1] - first.contact[1]) / shift if shift else 1.0
+    return float(min(max(rate, 0.0), RATE_CAP))
 
 
 def _along(state, new):
@@ -322,23 +374,25 @@ def _stable(state):
     return Linearisation(state.surface, state.w, state.delta, DELTA_ROW).stable
 
 
-def _moved(grids, state, tol, *, record=True):
+def _moved(grids, state, tol, *, record=True, radius=False):
     """`state` solved again, its tip held, on the grid of its edges (None where Newton fails
     there). With `record` (a state its grid still resolved, `admits`, before P̄'s extremum, the
     retraction's one estimated force: beyond, next to the fold, grids disagree far more, BEM
     `draft` at μ = 8 by 1.9e-5 against 1.6e-7 before it) the change of P̄ at the state's δ̄o is
     recorded (`record_move`), as `branches.follow_branch` measures it: held at the same tip, P̄
     would also change with δ̄o along the branch.
-    Not that of ā_c, recorded to bound the error of ā_c at P̄max, an approach's event: where the
-    retraction's compressive contact vanishes ā_c moves by tenths of √(Rε) between grids (μ =
-    20: 0.26) while P̄ changes by 1e-6."""
+    With `radius` (the approach, whose ā_c at P̄max is an event) the change of ā_c too; not on
+    the retraction: where its compressive contact vanishes ā_c moves by tenths of √(Rε) between
+    grids (μ = 20: 0.26) while P̄ changes by 1e-6."""
     surface, w = grids.move(state.surface, state.w, state.delta)
     moved = held(surface, w, state.delta, state.tip, tol=tol)
     if moved is not None and record:
         at_delta = correct(surface, moved.w, moved.delta, DELTA_ROW,
                            np.array([0.0, state.delta, 0.0]), 0.0, tol=tol)
-        force = moved.force if at_delta is None else surface.force(at_delta[0], state.delta)
-        grids.record_move(abs(force - state.force), 0.0)
+        w_at = moved.w if at_delta is None else at_delta[0]
+        force, contact = surface.force(w_at, state.delta), surface.contact(w_at, state.delta)
+        grids.record_move(abs(force - state.force),
+                          abs(contact[1] - state.contact[1]) if radius else 0.0)
     return moved
 
 
@@ -353,7 +407,7 @@ def _root(grids, first, second, rate, tol):
             if tip == end.tip:
                 return end.rates[rate]
         near = min(known[1:], key=lambda s: abs(s.tip - tip))
-        solved = _from(grids, near, tip, tol)
+        solved = _from(grids, near, tip, tol, _radius_rate(first, second))
         if solved is None:
             raise _NoRoot
         known.append(solved)
