@@ -348,18 +348,15 @@ class EdgeGrids:
                 f"most {self.largest_change:.1e} and ā_c by at most "
                 f"{self.largest_radius_change:.1e}")
 
-    def move(self, surface, w, delta, *, radius=None):
+    def move(self, surface, w, delta, *, centre=None):
         """(surface, w) of the state (w, δ̄o) moved to the grid of its edges (the pre-contact
-        grid without contact), centred ahead of them as they move (`_ahead`), w interpolated
-        linearly (not in equilibrium there). radius: where the state's ā_c is predicted to
-        settle (a prediction of `tip.follow_tip`, whose gaps moved with the tip while ā_c moves
-        at its own rate), the grid centred there and on its tip."""
+        grid without contact), centred ahead of them as they move (`_ahead`), or on the
+        (ā_c, tip) `centre` given (ā_c kept within [0, tip]), w interpolated linearly (not in
+        equilibrium there)."""
         edges, new = self._edges(surface, w, delta), self.start
-        if edges[1] > 0.0 and radius is not None:
-            edges = centre = (float(min(max(radius, 0.0), edges[1])), edges[1])
-        elif edges[1] > 0.0:
-            centre = self._ahead(surface, edges)
         if edges[1] > 0.0:
+            centre = (self._ahead(surface, edges) if centre is None
+                      else (float(min(max(centre[0], 0.0), centre[1])), float(centre[1])))
             if centre[1] + self.band >= self.r_max:  # no grid of this traction radius holds it
                 raise ContinuationError(f"the crack tip ({edges[1]:.4g} sqrt(R eps)) left the "
                                         f"traction radius {self.r_max:g} at δ = {delta:.6g}; "

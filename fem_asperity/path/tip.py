@@ -17,8 +17,8 @@ those derivatives (an equilibrium and its rates per evaluation).
 A prediction its grid does not admit is solved on a grid built for it (`_from`), so a step may
 cross several bands. A state its grid no longer fits (`grids.EdgeGrids.fits`) is solved again,
 its tip held, on the grid of its edges, and the change of P̄ recorded (`record_move`), as
-`branches.follow_branch` does; so is every MEASURED_EVERY-th state, on a grid placed
-otherwise, for the error estimate's grid-placement term.
+`branches.follow_branch` does; so is every MEASURED_EVERY-th state, on a grid centred ahead of
+it, for the error estimate's grid-placement term.
 """
 
 from typing import NamedTuple
@@ -47,6 +47,11 @@ from .surface import TIP_GAP, gap_keeping_step
 #: followed in the tip, LONGEST 8 instead of 1 took the tip's steps from 0.7-0.9 of a band to
 #: 4.5-6.8 (ā_c's limit); beyond 8 the P̄ and ā_c limits hold them anyway. Not pinned by a test.
 FIRST_STEP, GROWTH, EASY, SMALLEST, LONGEST = 0.25, 1.5, 3, 1.0 / 64.0, 8.0
+#: A step whose P̄ or ā_c changed by `ratio` of its limit (below) is retried SAFETY / ratio
+#: times as long, and the next after it is at most that (as `continuation.follow`'s): grown by
+#: GROWTH regardless, every other step went past ā_c's limit and was retried (BEM `draft`,
+#: μ = 50: 584 predictions for 324 points, each on a grid of its own). Not pinned by a test.
+SAFETY = 0.8
 #: ā_c of a prediction is placed (`_from`) by its rate per tip of the last step, clamped to
 #: [0, RATE_CAP]: where the compressive contact vanishes (the retraction) that rate is
 #: unbounded, and a grid centred far off would not fit the state (it is then moved,
@@ -72,10 +77,10 @@ END = 3.0
 #: ALONG of the prediction (`_along`), or it is retried shorter. Not pinned by a test.
 ALONG = 0.5
 #: Every MEASURED_EVERY-th state before P̄'s extremum that fits its grid is solved again on a grid
-#: placed otherwise (`_moved`) and the change recorded: the grids are built for each
-#: prediction (`_from`), so that the states fit them and few are moved, and those moves alone
-#: no longer bound the grids' placement (BEM `draft`, μ = 30: none recorded). Not pinned by a
-#: test.
+#: centred the grids' lead (`EdgeGrids.ahead`) further along (`_moved`), as a grid built while
+#: the edges move is, and the change recorded: the grids are built for each prediction
+#: (`_from`), so that the states fit them and few are moved, and those moves alone no longer
+#: bound the grids' placement (BEM `draft`, μ = 30: none recorded). Not pinned by a test.
 MEASURED_EVERY = 4
 #: The approach after a jump-in is followed in the tip where TIP_DA spans at least
 #: APPROACH_BANDS bands (`tip_direction`): there a tip's steps can be longer than the arc
@@ -242,7 +247,7 @@ def _from(grids, state, tip, tol, radius_rate=1.0):
     w = surface.translated(state.w, state.delta, shift, delta)
     if not grids.admits(surface, w, delta):
         radius = state.contact[1] + radius_rate * shift
-        surface = grids.move(surface, w, delta, radius=radius)[0]
+        surface = grids.move(surface, w, delta, centre=(radius, tip))[0]
         w = state.surface.translated(state.w, state.delta, shift, delta, onto=surface)
     return held(surface, w, delta, tip, tol=tol)
 
@@ -294,7 +299,7 @@ def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point
     if not (state.before_fold and _stable(state)):
         return TipPath(trace, None, None, surface, None)
     record(state)
-    step, past_extremum, radius_rate = FIRST_STEP * band, False, 1.0
+    step, past_extremum, radius_rate, longest = FIRST_STEP * band, False, 1.0, LONGEST * band
     while not until(trace):
         target = state.tip + direction * step
         if (direction < 0 and target < END * band) or step < SMALLEST * band:
@@ -307,7 +312,7 @@ def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point
             ratio = max(by_force, abs(new.contact[1] - state.contact[1]) / TIP_DA
                         if step > DA_FLOOR * band else 0.0)
             if ratio > 1.0:
-                step *= 0.8 / ratio
+                step *= SAFETY / ratio
                 if by_force <= 1.0:
                     step = max(step, DA_FLOOR * band)
                 trace.rejected_steps += 1
@@ -324,7 +329,7 @@ def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point
             # Brent's bracket held states of another branch (BEM `draft`, μ = 50: a fold
             # 2.3e-5 below the last stable state's δ̄o), or the step went past the fold and
             # back (stable, δ̄o rising) and `follow` failed there
-            step *= 0.5
+            step, longest = 0.5 * step, band
             trace.rejected_steps += 1
             continue
         if stable != new.before_fold:  # another mode than the tip's: `follow` goes on
@@ -332,17 +337,22 @@ def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point
         if not stable:
             return _fold(grids, trace, state, new, direction, tol)
         past_extremum = past_extremum or state.rates[2] * new.rates[2] < 0.0
-        _insert_force_extremum(grids, trace, state, new, direction, tol)
-        fits = grids.fits(new.surface, new.w, new.delta)
-        if not fits or (not past_extremum and len(trace.delta) % MEASURED_EVERY == 0):
-            again = _moved(grids, new, tol, record=not past_extremum, radius=direction > 0)
-            if again is None and not fits:
+        _insert_roots(grids, trace, state, new, direction, tol,
+                      (_force_rate, _centre_gap_above_contact) if direction > 0
+                      else (_force_rate,))
+        if not grids.fits(new.surface, new.w, new.delta):
+            new = _moved(grids, new, tol, record=not past_extremum, radius=direction > 0)
+            if new is None:
                 break
-            new = new if fits else again
+        elif not past_extremum and len(trace.delta) % MEASURED_EVERY == 0:
+            ahead = direction * grids.ahead * band
+            _moved(grids, new, tol, radius=direction > 0,
+                   centre=(new.contact[1] + ahead, new.tip + ahead))
         radius_rate = _radius_rate(state, new)
         state = new
         record(state)
-        step = min(step * (GROWTH if state.iterations <= EASY else 1.0), LONGEST * band)
+        growth = GROWTH if state.iterations <= EASY else 1.0
+        step = min(step * (growth if ratio * growth <= SAFETY else SAFETY / ratio), longest)
     return TipPath(trace, None, None, state.surface, state)
 
 
@@ -374,44 +384,45 @@ def _stable(state):
     return Linearisation(state.surface, state.w, state.delta, DELTA_ROW).stable
 
 
-def _moved(grids, state, tol, *, record=True, radius=False):
-    """`state` solved again, its tip held, on the grid of its edges (None where Newton fails
-    there). With `record` (a state its grid still resolved, `admits`, before P̄'s extremum, the
-    retraction's one estimated force: beyond, next to the fold, grids disagree far more, BEM
-    `draft` at μ = 8 by 1.9e-5 against 1.6e-7 before it) the change of P̄ at the state's δ̄o is
-    recorded (`record_move`), as `branches.follow_branch` measures it: held at the same tip, P̄
-    would also change with δ̄o along the branch.
+def _moved(grids, state, tol, *, record=True, radius=False, centre=None):
+    """`state` solved again, its tip held, on the grid of its edges (`EdgeGrids.move`, or
+    centred on the (ā_c, tip) `centre`; None where Newton fails there). With `record` (a state
+    before P̄'s extremum, the retraction's one estimated force: beyond, next to the fold, grids
+    disagree far more, BEM `draft` at μ = 8 by 1.9e-5 against 1.6e-7 before it; and the
+    approach's states) the change of P̄ at the state's δ̄o is recorded (`record_move`), as
+    `branches.follow_branch` measures it: held at the same tip, P̄ would also change with δ̄o
+    along the branch.
     With `radius` (the approach, whose ā_c at P̄max is an event) the change of ā_c too; not on
     the retraction: where its compressive contact vanishes ā_c moves by tenths of √(Rε) between
     grids (μ = 20: 0.26) while P̄ changes by 1e-6."""
-    surface, w = grids.move(state.surface, state.w, state.delta)
+    surface, w = grids.move(state.surface, state.w, state.delta, centre=centre)
     moved = held(surface, w, state.delta, state.tip, tol=tol)
     if moved is not None and record:
         at_delta = correct(surface, moved.w, moved.delta, DELTA_ROW,
                            np.array([0.0, state.delta, 0.0]), 0.0, tol=tol)
-        w_at = moved.w if at_delta is None else at_delta[0]
-        force, contact = surface.force(w_at, state.delta), surface.contact(w_at, state.delta)
+        w_at, d_at = (moved.w, moved.delta) if at_delta is None else (at_delta[0], state.delta)
+        force, contact = surface.force(w_at, d_at), surface.contact(w_at, d_at)
         grids.record_move(abs(force - state.force),
                           abs(contact[1] - state.contact[1]) if radius else 0.0)
     return moved
 
 
-def _root(grids, first, second, rate, tol):
+def _root(grids, first, second, of, tol):
     """The held state between the held states `first` and `second` (solved from the nearest
-    state known, `_from`) where the component `rate` of d(x̄o, δ̄o, P̄)/d(tip) vanishes (Brent
-    from the two states' own rates, which bracket it), or None where Newton fails inside."""
+    state known, `_from`) where of(state) vanishes (Brent from the two states' own values, which
+    bracket it), or None where Newton fails inside."""
     known = [first, second]
 
     def value(tip):
         for end in (first, second):
             if tip == end.tip:
-                return end.rates[rate]
+                return of(end)
         near = min(known[1:], key=lambda s: abs(s.tip - tip))
         solved = _from(grids, near, tip, tol, _radius_rate(first, second))
         if solved is None:
             raise _NoRoot
         known.append(solved)
-        return solved.rates[rate]
+        return of(solved)
 
     try:
         tip = brentq(value, *sorted((first.tip, second.tip)), xtol=XTOL)
@@ -424,25 +435,39 @@ class _NoRoot(Exception):
     """Newton failed inside a bracket."""
 
 
-def _insert_force_extremum(grids, trace, state, new, direction, tol):
-    """Append the extremum of P̄ between the held `state` and `new` where dP̄/d(tip) changes
-    sign there."""
-    if state.rates[2] * new.rates[2] >= 0.0:
-        return
-    extremum = _root(grids, state, new, 2, tol)
-    if extremum is not None and extremum.before_fold:
-        trace.append(extremum.surface, extremum.w, extremum.delta, True, extremum.force,
-                     extremum.contact, extremum.tangent(direction))
-        trace.newton_iterations += extremum.iterations
+def _force_rate(held):
+    """dP̄/d(tip): P̄'s extremum where it vanishes."""
+    return held.rates[2]
+
+
+def _centre_gap_above_contact(held):
+    """x̄o − 1 ε: the initial contact (δ̄o*, an event of the approach) where it vanishes."""
+    return held.observed[0] - 1.0
+
+
+def _insert_roots(grids, trace, state, new, direction, tol, values=(_force_rate,)):
+    """Append, in order along the path, the held states between the held `state` and `new`
+    where each of `values` (functions of a held state) changes sign. On the approach the
+    initial contact too (`_centre_gap_above_contact`; on the retraction, where it is no event,
+    x̄o passed 1 eleven times at μ = 50), which `curve._initial_contact` otherwise interpolates
+    between points: between the tip's long steps that missed it by 1.1e-3 (BEM `draft`, μ =
+    30, against an estimate of 3.1e-4 on the arc length), and the error estimate's finer trace,
+    whose crossing is corrected from its first point past it, found none."""
+    roots = [_root(grids, state, new, of, tol) for of in values if of(state) * of(new) < 0.0]
+    for root in sorted((r for r in roots if r is not None and r.before_fold),
+                       key=lambda r: abs(r.tip - state.tip)):
+        trace.append(root.surface, root.w, root.delta, True, root.force, root.contact,
+                     root.tangent(direction))
+        trace.newton_iterations += root.iterations
 
 
 def _fold(grids, trace, last, beyond, direction, tol):
     """The `TipPath` ending at the fold of δ̄o between the last stable state `last` and
     `beyond`, the extremum of P̄ before it included."""
-    fold = _root(grids, last, beyond, 1, tol)
+    fold = _root(grids, last, beyond, lambda held: held.rates[1], tol)
     if fold is None:  # the last stable state stands in for it
         fold = last
-    _insert_force_extremum(grids, trace, last, fold, direction, tol)
+    _insert_roots(grids, trace, last, fold, direction, tol)
     radius = fold.contact[1]
     values = dict(x=fold.surface.centre_gap(fold.w, fold.delta), p=fold.force, a_c=radius,
                   area=0.0 if radius <= 0.0 else np.pi * radius**2)
