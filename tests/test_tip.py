@@ -164,3 +164,14 @@ def test_the_approach_followed_in_the_tip_gives_the_arc_length_paths_curve(monke
     for key in ("p_max", "delta_oc", "a_c", "p_off", "delta_jump_out"):
         assert tipped.error_estimate.get(key) is not None, key
         assert abs(a[key] - b[key]) <= arc.error_estimate[key], key
+
+
+def test_the_jump_outs_fold_found_elsewhere_widens_its_estimate():
+    """BEM `draft` at μ = 8: the jump-out's fold found again from its bracketing states, each
+    on a grid centred the grids' lead further along, moves (`regrid_fold_change` > 0), and the
+    estimate of δ̄o at the jump-out includes that move (`solve.FOLDS`): the finer partner places
+    its grids alike and does not see it."""
+    result = solve_curve(8.0, method="bem", accuracy="draft")
+    assert result.regrid_fold_change > 0.0
+    assert result.error_estimate["delta_jump_out"] >= result.regrid_fold_change
+    assert f"a fold's δ̄o by at most {result.regrid_fold_change:.1e}" in result.message

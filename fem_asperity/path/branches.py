@@ -17,7 +17,7 @@ from ..plumbing.errors import ContinuationError
 from .continuation import APPROACH, Trace, approach_fraction, follow, start_state
 from .curve import Jump, curve_from_columns
 from .grids import Grids
-from .tip import follow_tip, tip_direction
+from .tip import follow_tip, record_fold_elsewhere, tip_direction
 from .whole_curve import (
     ADJACENT,
     COLUMNS,
@@ -68,8 +68,11 @@ def follow_branch(grids, surface, w, delta, heading, settings, until, on_point):
             merged.drop_last()
     while True:
         done = partial(_done_or_off_grid, until, grids, surface)
-        traced, fold, beyond = _piece(surface, w, delta, heading, settings, done, on_point,
-                                      partial(grids.admits, surface))
+        traced, fold, beyond, beyond_delta = _piece(surface, w, delta, heading, settings, done,
+                                                    on_point, partial(grids.admits, surface))
+        if fold is not None and beyond is not None and direction < 0 and traced.delta:
+            record_fold_elsewhere(grids, surface, (traced.states[-1], traced.delta[-1]),
+                                  (beyond, beyond_delta), settings.tol)
         if fold is not None or until(traced):
             merged.extend(traced)
             return merged, fold, beyond, surface, None
@@ -91,8 +94,8 @@ def _done_or_off_grid(until, grids, surface, tr):
 
 
 def _piece(surface, w, delta, heading, settings, until, on_point, admissible=None):
-    """(stable Trace from (w, δ) with its force extrema refined, fold, state past the fold):
-    fold = (δ̄o, values before) at the branch's end, or None if `until` was met.
+    """(stable Trace from (w, δ) with its force extrema refined, fold, state past the fold and
+    its δ̄o): fold = (δ̄o, values before) at the branch's end, or None if `until` was met.
 
     The fold is where dδ̄o/ds = 0 between the last stable and the first unstable point
     (`whole_curve.root_along`), or one interval earlier (`whole_curve.ADJACENT`: the last point
@@ -101,10 +104,11 @@ def _piece(surface, w, delta, heading, settings, until, on_point, admissible=Non
     (`whole_curve.fold_by_parabola`), or the start if the branch has no more."""
     traced = follow(surface, w, delta, heading, settings, until=until, stop_at_fold=True,
                     on_point=on_point, admissible=admissible)
-    fold = beyond = None
+    fold = beyond = beyond_delta = None
     if not traced.stable[-1]:
         k, exact = len(traced.delta) - 2, None
         beyond = traced.states[-1]  # the first point flagged unstable: the landing starts there
+        beyond_delta = traced.delta[-1]
         for j in (k + shift for shift in ADJACENT if shift <= 0 and k + shift >= 0):
             exact = root_along(surface, traced, j, 1)
             if exact is not None:
@@ -123,7 +127,7 @@ def _piece(surface, w, delta, heading, settings, until, on_point, admissible=Non
         fold[1]["area"] = 0.0 if fold[1]["a_c"] <= 0.0 else np.pi * fold[1]["a_c"] ** 2
         traced.drop_last()
     refine_force_extrema(surface, traced)
-    return traced, fold, beyond
+    return traced, fold, beyond, beyond_delta
 
 
 def land_jump(grids, surface, fold, beyond, settings, counter, landed=None, *,

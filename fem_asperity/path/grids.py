@@ -122,7 +122,9 @@ class EdgeGrids:
     the lead of the next, in bands (None: FIT and AHEAD; the FE's are FE_FIT and FE_AHEAD).
     Counters: `regrids` (grids built), `largest_nodes`, `dofs` (the unknowns of the largest
     solid), `largest_change` and `largest_radius_change` (the largest |ΔP̄| and |Δā_c| of a
-    state moved to a new grid while on a branch: a measure of the discretisation error).
+    state moved to a new grid while on a branch: a measure of the discretisation error),
+    `largest_fold_change` (the largest |Δδ̄o| of a fold found again on grids placed otherwise,
+    `record_fold`).
     """
 
     def __init__(self, mu, *, h, band, h_inside, contact_h, contact_r, r_max, growth=0.1,
@@ -142,7 +144,7 @@ class EdgeGrids:
         self.start = self._surface(radial_grid(h=contact_h, r_fine=contact_r, r_max=r_max,
                                                growth=growth), (0.0, 0.0), (0.0, 0.0))
         self.regrids, self.largest_nodes = 0, self.start.r_nodes.size
-        self.largest_change = self.largest_radius_change = 0.0
+        self.largest_change = self.largest_radius_change = self.largest_fold_change = 0.0
 
     def _surface(self, nodes, centre, edges):
         elastic = self.elastic_on(nodes)
@@ -340,13 +342,18 @@ class EdgeGrids:
         self.largest_change = max(self.largest_change, change)
         self.largest_radius_change = max(self.largest_radius_change, radius_change)
 
+    def record_fold(self, change):
+        """Keep the largest |Δδ̄o| of a fold found again on grids placed otherwise."""
+        self.largest_fold_change = max(self.largest_fold_change, change)
+
     def summary(self):
         """How many grids followed the edge, their largest size, the largest move's |ΔP̄| and
-        |Δā_c|."""
+        |Δā_c|, and the largest |Δδ̄o| of a fold found again elsewhere."""
         return (f"; {self.regrids} grids followed the contact edge (at most "
                 f"{self.largest_nodes} nodes), moving a state to a new grid changed P̄ by at "
                 f"most {self.largest_change:.1e} and ā_c by at most "
-                f"{self.largest_radius_change:.1e}")
+                f"{self.largest_radius_change:.1e}, and a fold's δ̄o by at most "
+                f"{self.largest_fold_change:.1e}")
 
     def move(self, surface, w, delta, *, centre=None):
         """(surface, w) of the state (w, δ̄o) moved to the grid of its edges (the pre-contact
@@ -407,6 +414,9 @@ class FixedGrid:
     def record_move(self, change, radius_change):
         """Never called: a state never leaves a fixed grid."""
 
+    def record_fold(self, change):
+        """Never called: a fold is never found again on another grid."""
+
     def summary(self):
         """Nothing to add to a curve's message."""
         return ""
@@ -430,7 +440,8 @@ class Grids(Protocol):
     from a state on `surface` lands, to land from instead, or None (then it lands from the
     fold).
     record_move(ΔP̄, Δā_c): note the force and contact-radius changes of a state moved to a new
-    grid. transplant(nodes, w, δ̄o): (surface, w) of a state given on other radial nodes, moved
+    grid. record_fold(Δδ̄o): note how far a fold moved when found again on grids placed
+    otherwise. transplant(nodes, w, δ̄o): (surface, w) of a state given on other radial nodes, moved
     here. summary(): a clause for the curve's message. dofs, largest_nodes: the cost of the
     largest solid used.
     """
@@ -454,6 +465,8 @@ class Grids(Protocol):
                       into_contact: bool) -> tuple[LJSurface, np.ndarray] | None: ...
 
     def record_move(self, change: float, radius_change: float) -> None: ...
+
+    def record_fold(self, change: float) -> None: ...
 
     def transplant(self, nodes: np.ndarray, w: np.ndarray,
                    delta: float) -> tuple[LJSurface, np.ndarray]: ...

@@ -27,6 +27,7 @@ import numpy as np
 from scipy.linalg import LinAlgError, cho_solve, lu_factor, lu_solve
 from scipy.optimize import brentq
 
+from ..plumbing.errors import ContinuationError
 from .continuation import (
     DELTA_ROW,
     Linearisation,
@@ -82,6 +83,10 @@ ALONG = 0.5
 #: (`_from`), so that the states fit them and few are moved, and those moves alone no longer
 #: bound the grids' placement (BEM `draft`, μ = 30: none recorded). Not pinned by a test.
 MEASURED_EVERY = 4
+#: States a bracket's width apart that `_record_fold_elsewhere` adds, at most, to bracket the
+#: fold again on the grids placed otherwise where both of its moved states lie on one side of
+#: it. Not pinned by a test.
+BRACKETING = 4
 #: The approach after a jump-in is followed in the tip where TIP_DA spans at least
 #: APPROACH_BANDS bands (`tip_direction`): there a tip's steps can be longer than the arc
 #: length's, which its grid's band holds to a band.
@@ -461,12 +466,73 @@ def _insert_roots(grids, trace, state, new, direction, tol, values=(_force_rate,
         trace.newton_iterations += root.iterations
 
 
+def _delta_rate(held):
+    """dδ̄o/d(tip): the fold of δ̄o where it vanishes."""
+    return held.rates[1]
+
+
+def record_fold_elsewhere(grids, surface, last, beyond, tol):
+    """`_record_fold_elsewhere` for a retraction followed in arc length up to its fold
+    (`branches.follow_branch`: from μ ≈ 45 the tip path hands over before the jump-out), its
+    last stable state `last` and the first past it, `beyond`, each (w, δ̄o) on `surface`: the
+    fold is found in the tip between them here too, so that both are found alike; nothing is
+    recorded where they do not bracket a fold of δ̄o in the tip (the arc length's fold came
+    from a parabola, or lies where the tip turns back)."""
+    states = [_as_held(surface, w, delta) for w, delta in (last, beyond)]
+    if not (min(state.tip for state in states) > END * grids.band
+            and _delta_rate(states[0]) < 0.0 < _delta_rate(states[1])):
+        return
+    try:
+        fold = _root(grids, *states, _delta_rate, tol)
+    except ContinuationError:  # a diagnostic: it never costs the curve
+        return
+    if fold is not None:
+        _record_fold_elsewhere(grids, fold.delta, *states, -1, tol)
+
+
+def _record_fold_elsewhere(grids, fold, last, beyond, direction, tol):
+    """Find the fold at δ̄o = `fold` again from the held `last` and `beyond`, each solved on a
+    grid centred the grids' lead further along (as `follow_tip` measures its states), and record
+    how far its δ̄o moved (`record_fold`): the error estimate's finer partner places its grids
+    alike, and at BEM `draft`, μ = 8, δ̄o at the jump-out moved by 4.5e-7 between two placements
+    of the grids, against its estimate of 4.1e-7 without this term (`solve.FOLDS`). Where the
+    two moved states lie on one side of the fold, up to BRACKETING more states a bracket's
+    width apart, each on the branch (`_along`). A measurement that fails records nothing."""
+    ahead = direction * grids.ahead * grids.band
+    try:
+        first, second = [_moved(grids, state, tol, record=False,
+                                centre=(state.contact[1] + ahead, state.tip + ahead))
+                         for state in (last, beyond)]
+        step = beyond.tip - last.tip
+        for extension in range(BRACKETING + 1):
+            if first is None or second is None:
+                return
+            if _delta_rate(first) * _delta_rate(second) < 0.0:
+                again = _root(grids, first, second, _delta_rate, tol)
+                if again is not None:
+                    grids.record_fold(abs(again.delta - fold))
+                return
+            if extension == BRACKETING:
+                return
+            rate = _radius_rate(first, second)
+            if _delta_rate(second) < 0.0:  # both before the fold on these grids: further on
+                new = _from(grids, second, second.tip + step, tol, rate)
+                first, second = second, new if new is not None and _along(second, new) else None
+            else:  # both past it: back
+                new = _from(grids, first, first.tip - step, tol, rate)
+                first, second = new if new is not None and _along(first, new) else None, first
+    except ContinuationError:
+        return
+
+
 def _fold(grids, trace, last, beyond, direction, tol):
     """The `TipPath` ending at the fold of δ̄o between the last stable state `last` and
     `beyond`, the extremum of P̄ before it included."""
-    fold = _root(grids, last, beyond, lambda held: held.rates[1], tol)
+    fold = _root(grids, last, beyond, _delta_rate, tol)
     if fold is None:  # the last stable state stands in for it
         fold = last
+    elif direction < 0:  # the jump-out, whose estimate adds the move (`solve.FOLDS`)
+        _record_fold_elsewhere(grids, fold.delta, last, beyond, direction, tol)
     _insert_roots(grids, trace, last, fold, direction, tol)
     radius = fold.contact[1]
     values = dict(x=fold.surface.centre_gap(fold.w, fold.delta), p=fold.force, a_c=radius,

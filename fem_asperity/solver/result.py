@@ -71,6 +71,9 @@ class CurveResult:
         a new grid while on a branch: how much where the grids lie moves the forces (the error
         estimate of the forces includes it); None on one grid or mesh.
     regrid_radius_change: the same for ā_c (the estimate of ā_c includes it).
+    regrid_fold_change: the largest |Δδ̄o| of the jump-out's fold found again on grids placed
+        otherwise (the estimate of δ̄o at the jump-out includes it; 0 where no fold of a
+        retraction in contact was found so, `path.tip.record_fold_elsewhere`).
     model: the `Model` behind the curve, for field output (the FE, or the BEM on one grid; None
         for BEM grids that follow the edge). On grids that follow the edge its surface is the
         first state's only: each state's own nodes are in its trace.
@@ -100,6 +103,7 @@ class CurveResult:
     z_jumps: dict | None = None
     regrid_change: float | None = None
     regrid_radius_change: float | None = None
+    regrid_fold_change: float | None = None
     model: Model | None = field(default=None, repr=False, compare=False)
 
     @property
@@ -150,6 +154,7 @@ class CurveResult:
             "surface_nodes": self.surface_nodes,
             "regrid_change": self.regrid_change,
             "regrid_radius_change": self.regrid_radius_change,
+            "regrid_fold_change": self.regrid_fold_change,
             "points": self.points,
             "newton_iterations": self.newton_iterations,
             "wall_s": self.wall_s,

@@ -62,6 +62,11 @@ FORCES = ("p_max", "p_jump_after", "p_off")
 #: 2.8e-5 without it (a move changed ā_c by up to 9e-4, median 5e-5);
 #: test_tracking.py::test_grids_ahead_of_the_edges_build_fewer_grids_for_the_same_curve.
 RADII = ("a_c",)
+#: Likewise the estimated jump-out adds `regrid_fold_change`, how far its fold moved when found
+#: again on grids placed otherwise (`tip._record_fold_elsewhere`): at μ = 8 (BEM `draft`) δ̄o
+#: at the jump-out moved by 4.5e-7 between two placements, against an estimate of 4.1e-7
+#: without it. test_tip.py::test_the_jump_outs_fold_found_elsewhere_widens_its_estimate.
+FOLDS = ("delta_jump_out",)
 
 
 def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, unstable_branch=False,
@@ -136,6 +141,7 @@ def _solve_traced(mu, disc, *, solid, radius_ratio, unstable_branch, spring_cons
         z_jumps=z_jumps,
         regrid_change=None if fixed else grids.largest_change,
         regrid_radius_change=None if fixed else grids.largest_radius_change,
+        regrid_fold_change=None if fixed else grids.largest_fold_change,
         model=None if grids.elastic is None else Model(grids.elastic, grids.start, traced),
     ), traced
 
@@ -260,7 +266,8 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
         result, estimate, note, status = estimated(mu, disc, options, progress, pool)
     if estimate is not None and result.regrid_change is not None:
         moved = {**dict.fromkeys(FORCES, result.regrid_change),
-                 **dict.fromkeys(RADII, result.regrid_radius_change)}
+                 **dict.fromkeys(RADII, result.regrid_radius_change),
+                 **dict.fromkeys(FOLDS, result.regrid_fold_change)}
         estimate = {k: (v + moved[k] if k in moved and v is not None else v)
                     for k, v in estimate.items()}
     if progress:
