@@ -125,7 +125,7 @@ def test_the_peel_gives_the_arc_length_paths_events(monkeypatch):
 
 
 def test_the_approach_followed_in_the_tip_gives_the_arc_length_paths_curve(monkeypatch):
-    """BEM `draft` at μ = 8: the approach after the jump-in followed in the tip (as from μ ≈ 27
+    """BEM `draft` at μ = 8: the approach after the jump-in followed in the tip (as from μ = 26
     on, `tip.APPROACH_BANDS`, forced here) against the same branch followed in arc length (the
     default at this μ). Its P̄(δ̄o), a cubic spline through its points, passes the arc length's
     points within 1e-6 (measured 6.8e-8; the arc length's own spline through every other point

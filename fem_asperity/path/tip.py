@@ -350,9 +350,7 @@ def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point
             if new is None:
                 break
         elif not past_extremum and len(trace.delta) % MEASURED_EVERY == 0:
-            ahead = direction * grids.ahead * band
-            _moved(grids, new, tol, radius=direction > 0,
-                   centre=(new.contact[1] + ahead, new.tip + ahead))
+            _moved_ahead(grids, new, direction, tol, radius=direction > 0)
         radius_rate = _radius_rate(state, new)
         state = new
         record(state)
@@ -410,6 +408,14 @@ def _moved(grids, state, tol, *, record=True, radius=False, centre=None):
         grids.record_move(abs(force - state.force),
                           abs(contact[1] - state.contact[1]) if radius else 0.0)
     return moved
+
+
+def _moved_ahead(grids, state, direction, tol, **record):
+    """`_moved` onto a grid centred the grids' lead (`EdgeGrids.ahead`) further along, in the
+    tip's `direction`, than `state`'s edges: a placement the state's own grid does not have."""
+    ahead = direction * grids.ahead * grids.band
+    return _moved(grids, state, tol, centre=(state.contact[1] + ahead, state.tip + ahead),
+                  **record)
 
 
 def _root(grids, first, second, of, tol):
@@ -473,7 +479,8 @@ def _delta_rate(held):
 
 def record_fold_elsewhere(grids, surface, last, beyond, tol):
     """`_record_fold_elsewhere` for a retraction followed in arc length up to its fold
-    (`branches.follow_branch`: from μ ≈ 45 the tip path hands over before the jump-out), its
+    (`branches.follow_branch`: at BEM μ = 46.9 and 50 the tip path handed over before the
+    jump-out), its
     last stable state `last` and the first past it, `beyond`, each (w, δ̄o) on `surface`: the
     fold is found in the tip between them here too, so that both are found alike; nothing is
     recorded where they do not bracket a fold of δ̄o in the tip (the arc length's fold came
@@ -498,10 +505,8 @@ def _record_fold_elsewhere(grids, fold, last, beyond, direction, tol):
     of the grids, against its estimate of 4.1e-7 without this term (`solve.FOLDS`). Where the
     two moved states lie on one side of the fold, up to BRACKETING more states a bracket's
     width apart, each on the branch (`_along`). A measurement that fails records nothing."""
-    ahead = direction * grids.ahead * grids.band
     try:
-        first, second = [_moved(grids, state, tol, record=False,
-                                centre=(state.contact[1] + ahead, state.tip + ahead))
+        first, second = [_moved_ahead(grids, state, direction, tol, record=False)
                          for state in (last, beyond)]
         step = beyond.tip - last.tip
         for extension in range(BRACKETING + 1):
@@ -514,13 +519,13 @@ def _record_fold_elsewhere(grids, fold, last, beyond, direction, tol):
                 return
             if extension == BRACKETING:
                 return
-            rate = _radius_rate(first, second)
-            if _delta_rate(second) < 0.0:  # both before the fold on these grids: further on
-                new = _from(grids, second, second.tip + step, tol, rate)
-                first, second = second, new if new is not None and _along(second, new) else None
-            else:  # both past it: back
-                new = _from(grids, first, first.tip - step, tol, rate)
-                first, second = new if new is not None and _along(first, new) else None, first
+            # both before the fold on these grids: on past `second`; both past it: back
+            onward = _delta_rate(second) < 0.0
+            end = second if onward else first
+            new = _from(grids, end, end.tip + (step if onward else -step), tol,
+                        _radius_rate(first, second))
+            new = new if new is not None and _along(end, new) else None
+            first, second = (second, new) if onward else (new, first)
     except ContinuationError:
         return
 
