@@ -3,8 +3,8 @@
 What is measured (one at a time on an otherwise idle machine): single curves through
 `solve_curve`, the BEM `default` curve at μ = 10 alone and with its error estimate, the BEM
 `default` curve at μ = 5.7 with its estimate (the uniform grid's worst ratio of estimate to
-solve before issue 19), the BEM `draft` curve at μ = 20, and the FE `default` curve at μ = 5
-alone and with its estimate;
+solve before issue 19), the BEM `draft` curve at μ = 20, and the FE `default` curves at μ = 5
+(grids that follow the edge) and μ = 1 (the whole surface) alone and with their estimates;
 for each, the wall time, points and Newton iterations, and the events, so that a faster commit
 can be checked to give the same events within their estimates. Then the sweep the issue names:
 20 log-spaced μ from 0.05 to 10, BEM `default` with estimates, on both cores, from an empty
@@ -35,7 +35,9 @@ RUNS = (("BEM default, mu = 10", 10.0, "bem", "default", False),
         ("BEM default, mu = 5.7, with estimate", 5.7, "bem", "default", True),
         ("BEM draft, mu = 20", 20.0, "bem", "draft", False),
         ("FE default, mu = 5", 5.0, "fem", "default", False),
-        ("FE default, mu = 5, with estimate", 5.0, "fem", "default", True))
+        ("FE default, mu = 5, with estimate", 5.0, "fem", "default", True),
+        ("FE default, mu = 1", 1.0, "fem", "default", False),
+        ("FE default, mu = 1, with estimate", 1.0, "fem", "default", True))
 QUICK_RUNS = (("BEM draft, mu = 10", 10.0, "bem", "draft", False),)
 #: The largest μ of the issue's targets, run on their own (`--large`: tens of minutes each).
 LARGE_RUNS = (("BEM draft, mu = 50", 50.0, "bem", "draft", False),

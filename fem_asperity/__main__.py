@@ -21,7 +21,7 @@ from .plumbing.checks import positive
 from .plumbing.cli import Parser, ProgressBar, dump_json, format_cell, print_table, run
 from .plumbing.errors import DerjaguinWarning
 from .plumbing.files import writable_folder
-from .solver.presets import METHODS, PRESETS
+from .solver.presets import ESTIMATE_BY, METHODS, PRESETS
 
 PROG = "python -m fem_asperity"
 EVENT_COLUMNS = ("mu", "p_max", "delta_oc", "delta_o_star", "a_c", "jump_in", "x_oc")
@@ -82,8 +82,13 @@ def build_parser():
                             "dgamma); jumps where dP/d(delta) reaches it (omit: displacement "
                             "control)")
     curve.add_argument("--no-error-estimate", action="store_true",
-                       help="skip the error estimate (its events solved again on a finer "
-                            "discretisation near each event; faster)")
+                       help="skip the error estimate (faster)")
+    curve.add_argument("--estimate-by", choices=ESTIMATE_BY, default="auto",
+                       help="how the error estimate is made: 'finer', the events solved again "
+                            "on a finer discretisation near each; 'bem', the FE of a "
+                            "homogeneous half-space against the boundary integral's curve plus "
+                            "that curve's own estimate; 'auto' (default), 'bem' where it "
+                            "applies, else 'finer'")
     curve.add_argument("--unstable-branch", action="store_true",
                        help="also trace the unstable branches (the whole S-shaped curve in "
                             "equilibrium.csv and curve.png; slower: LU factorisations and short "
@@ -187,6 +192,7 @@ def _curve(args, parser):
             result = solve_curve(mu, method=args.method, accuracy=args.accuracy, solid=solid,
                                  radius_ratio=radius_ratio,
                                  error_estimate=not args.no_error_estimate,
+                                 estimate_by=args.estimate_by,
                                  unstable_branch=args.unstable_branch, spring_constant=spring,
                                  progress=bar)
     except ContinuationError as exc:

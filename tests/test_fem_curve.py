@@ -114,6 +114,11 @@ def test_bad_input():
         solve_curve(1.0, accuracy="best")
     with pytest.raises(InputError, match="radius_ratio"):
         solve_curve(1.0, radius_ratio=2.0)
+    with pytest.raises(InputError, match="estimate_by"):
+        solve_curve(1.0, estimate_by="richardson")
+    for other in (dict(method="bem"), dict(solid=Solid(layer_thickness=0.5))):
+        with pytest.raises(InputError, match="homogeneous half-space"):
+            solve_curve(1.0, estimate_by="bem", **other)
 
 
 def test_a_saved_result_records_every_input_the_version_and_the_revision():

@@ -120,6 +120,14 @@ FE_MAX_ELEMENTS = 300_000
 BEM_MAX_NODES = 4000
 #: Methods: finite elements ('fem') or the boundary-integral solver ('bem').
 METHODS = ("fem", "bem")
+#: How a curve's error estimate is made (`solve_curve`'s estimate_by): 'finer', its events
+#: solved again on its finer discretisation; 'bem', the FE against the boundary integral's
+#: curve at the same preset with that curve's own ('finer') estimate; 'auto', 'bem' for the FE
+#: of a homogeneous half-space, else 'finer'. The FE's finer half-space cost 2.5-5 times its
+#: curve (its condensation; docs/accuracy-study.md at 9f5dc20, benchmarks/results/
+#: large_mu-tip-after.md), the boundary integral's curve with its estimate about as much as the
+#: FE's curve, alongside it on the second core (benchmarks/results/large_mu-bem-partner.md).
+ESTIMATE_BY = ("auto", "finer", "bem")
 #: The error estimate's finer solve grades the bulk (FE) or tail (BEM) twice as gently, so the
 #: estimate also sees the bulk mesh, which dominates the FE's δ̄oc error at small μ (μ = 0.5: 6e-7
 #: off at grading 0.2, 2e-8 at 0.067). With 1 (the grading kept) the FE's estimate of δ̄ at the

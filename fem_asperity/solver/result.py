@@ -56,8 +56,11 @@ class CurveResult:
         stable branches the paths visit, one after the other (`branch` numbers them).
     approach, retraction: the paths under δ̄o control (jumps as consecutive points at equal δ̄o).
     events: `Events` read off the paths. error_estimate: estimated absolute error per event key,
-    in the event's units (`solve._estimate`; None where not estimated); relative_error_estimate
-    holds the same relative to the event.
+    in the event's units (None where not estimated); relative_error_estimate holds the same
+    relative to the event. estimated_by: how the estimate was made, 'finer' (the events again
+    on a finer discretisation, `solve._estimate`), 'bem' (the FE against the boundary
+    integral, `solve._against_partner`), 'tolerance' (the last change between refinement
+    levels, `solve.solve_to_tolerance`) or None (no estimate asked for).
     dofs, surface_nodes, points, newton_iterations, wall_s: cost.
     folds: folds of δ̄o met: changes of stability along the whole curve, or jumps of the paths.
     radius_ratio (R/ε of the exact sphere; None: Derjaguin's parabola), p_end, unstable_branch,
@@ -68,11 +71,11 @@ class CurveResult:
     status: one of `STATUSES` ('ok' unless something calls for a finer accuracy);
     message: how it was obtained, and why the status is not 'ok' where it is not.
     regrid_change: on grids that follow the contact edge, the largest |ΔP̄| of a state moved to
-        a new grid while on a branch: how much where the grids lie moves the forces (the error
-        estimate of the forces includes it); None on one grid or mesh.
-    regrid_radius_change: the same for ā_c (the estimate of ā_c includes it).
+        a new grid while on a branch: how much where the grids lie moves the forces (a 'finer'
+        error estimate of the forces includes it); None on one grid or mesh.
+    regrid_radius_change: the same for ā_c (a 'finer' estimate of ā_c includes it).
     regrid_fold_change: the largest |Δδ̄o| of the jump-out's fold found again on grids placed
-        otherwise (the estimate of δ̄o at the jump-out includes it; 0 where no fold of a
+        otherwise (a 'finer' estimate of δ̄o at the jump-out includes it; 0 where no fold of a
         retraction in contact was found so, `path.tip.record_fold_elsewhere`).
     model: the `Model` behind the curve, for field output (the FE, or the BEM on one grid; None
         for BEM grids that follow the edge). On grids that follow the edge its surface is the
@@ -104,6 +107,7 @@ class CurveResult:
     regrid_change: float | None = None
     regrid_radius_change: float | None = None
     regrid_fold_change: float | None = None
+    estimated_by: str | None = None
     model: Model | None = field(default=None, repr=False, compare=False)
 
     @property
@@ -150,6 +154,7 @@ class CurveResult:
             **(self.z_jumps or {}),
             "error_estimate": self.error_estimate,
             "relative_error_estimate": self.relative_error_estimate,
+            "estimated_by": self.estimated_by,
             "dofs": self.dofs,
             "surface_nodes": self.surface_nodes,
             "regrid_change": self.regrid_change,

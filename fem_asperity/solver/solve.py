@@ -7,7 +7,9 @@ no truncation of the solid. Then, for both: LJ 9-3 traction on the surface as a 
 form with its consistent tangent; pseudo-arc-length continuation of the whole equilibrium curve;
 exact extrema of P̄; approach and retraction under δ̄o control read off it, jumps included (see
 `path.branches`, `path.whole_curve`). The error estimate is twice the change of each event on
-a finer discretisation (`for_estimate()` of the `solver.presets` discretisation, `_estimate`)."""
+a finer discretisation (`for_estimate()` of the `solver.presets` discretisation, `_estimate`);
+the FE of a homogeneous half-space is instead checked against the boundary integral
+(`_against_partner`)."""
 
 import threading
 import time
@@ -26,7 +28,7 @@ from ..path.whole_curve import whole_curve_paths
 from ..plumbing.checks import in_range, positive
 from ..plumbing.errors import ContinuationError, InputError
 from ..solids.fe import Solid
-from .presets import MU_TRACKING, discretisation, sizing_mu
+from .presets import ESTIMATE_BY, MU_TRACKING, discretisation, sizing_mu
 from .result import PHYSICAL_FOLDS, CurveResult, Model, worst_status
 
 #: BLAS threads while a curve is set up and traced, 1: its dense factorisations (n ≈ 100-3000)
@@ -67,6 +69,14 @@ RADII = ("a_c",)
 #: at the jump-out moved by 4.5e-7 between two placements, against an estimate of 4.1e-7
 #: without it. test_tip.py::test_the_jump_outs_fold_found_elsewhere_widens_its_estimate.
 FOLDS = ("delta_jump_out",)
+#: Against the boundary integral the FE's estimate is DIFFERENCE_FACTOR |FE − BEM| plus the
+#: BEM's own estimate, 2: the FE's error is at most |FE − BEM| + the BEM's error, and the BEM's
+#: estimate bounds that only where it exceeds the continuation's tolerance (about 1e-8); twice
+#: the difference keeps the bound where the BEM is far more accurate than the FE and its own
+#: estimate sits at that floor (as twice a finer partner's difference does, `_estimate`).
+#: python -m validation accuracy judges it (docs/accuracy-study.md);
+#: test_bem_curve.py::test_the_fes_estimate_against_the_bem_bounds_its_error.
+DIFFERENCE_FACTOR = 2.0
 
 
 def solve_discretised(mu, disc, *, solid=Solid(), radius_ratio=None, unstable_branch=False,
@@ -198,20 +208,20 @@ def _estimate(a, disc, b, partner_disc):
             for k in ESTIMATED}
 
 
-def _one_sided(a, b):
-    """A message naming the estimated events (records `a` of the solve, `b` of its partner) that
-    one of the two has and the other not (a jump one discretisation finds and the other
+def _one_sided(a, b, partner="its finer estimate discretisation"):
+    """A message naming the estimated events (records `a` of the solve, `b` of its `partner`)
+    that one of the two has and the other not (a jump one discretisation finds and the other
     misses): their estimate is None."""
     keys = [k for k in ESTIMATED if (a[k] is None) != (b[k] is None)]
     if not keys:
         return ""
-    return (f"; {', '.join(keys)} found by only one of the solve and its finer estimate "
-            f"discretisation (no estimate for them): try a finer accuracy")
+    return (f"; {', '.join(keys)} found by only one of the solve and {partner} (no estimate "
+            f"for them): try a finer accuracy")
 
 
 def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_ratio=None,
-                p_end=1.0, error_estimate=True, unstable_branch=False, spring_constant=None,
-                progress=None):
+                p_end=1.0, error_estimate=True, estimate_by="auto", unstable_branch=False,
+                spring_constant=None, progress=None):
     """Approach and retraction of a rigid sphere on the half-space at Tabor parameter `mu`.
 
     method: 'fem' (finite elements) or 'bem' (boundary integral; a layer by `solids.layered`).
@@ -223,15 +233,23 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
         is the whole S-shaped curve (more work: LU factorisations and short steps); by default
         only the stable branches are traced and each jump lands by energy descent
         (`path.branches`).
-    error_estimate: also solve each event on the discretisation of the estimate
-        (`for_estimate()`: surface elements and turn limit halved, the bulk graded more gently)
-        and report per event twice the difference (`_estimate`). The finer discretisation
-        traces the curve near each event only (`path.near_events`, after the curve; its
-        surfaces are built alongside on the second core); with `unstable_branch` or a
-        `spring_constant` it solves the whole curve again alongside. If that fails (or the
-        whole finer curve ripples) the estimate is None and `status` and `message` say why;
-        an event the finer discretisation has none of near the curve's has no estimate and
-        the `message` names it. The result is kept.
+    error_estimate: also estimate each event's error, as `estimate_by` says. If that fails
+        (or a whole second curve ripples) the estimate is None and `status` and `message` say
+        why; an event the second solve has none of near the curve's has no estimate and the
+        `message` names it. The result is kept.
+    estimate_by: one of ESTIMATE_BY.
+        'finer': each event solved again on the discretisation of the estimate
+        (`for_estimate()`: surface elements and turn limit halved, the bulk graded more gently),
+        and per event twice the difference (`_estimate`). The finer discretisation traces the
+        curve near each event only (`path.near_events`, after the curve; its surfaces are built
+        alongside on the second core); with `unstable_branch` or a `spring_constant` it solves
+        the whole curve again alongside.
+        'bem' (the FE of a homogeneous half-space only): the boundary integral's curve at the
+        same preset, with its own 'finer' estimate, solved alongside on the second core; per
+        event DIFFERENCE_FACTOR |FE − BEM| plus the BEM's estimate (`_against_partner`). It
+        costs about as much as the FE's curve instead of 2.5-5 times, and bounds the FE's whole
+        error (its bulk mesh and truncation included) with an independent method.
+        'auto' (default): 'bem' for the FE of a homogeneous half-space, else 'finer'.
     spring_constant: load-line control, as through an AFM cantilever, with a spring of this
         stiffness k̄ = Kε/(2πRΔγ) (> 0): the jumps come where dP̄/dδ̄o reaches k̄, and the
         result's z_jumps hold the spring end's z̄ at them (`path.load_line`); the whole curve is
@@ -247,24 +265,43 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
         in_range("radius_ratio", radius_ratio, 10.0, np.inf, closed_lo=True)
     if spring_constant is not None:
         in_range("spring_constant", spring_constant, 0.0, SPRING_MAX)
-    disc = _discretisation(mu, accuracy, solid=solid, method=method, p_end=p_end,
-                           whole=unstable_branch or spring_constant is not None)
-    if spring_constant is not None:
-        # The spring lets the sphere go at a force of at most Bradley's 1 (2πRΔγ), from δ̄o below
-        # x_start, so it lands below x_start + 1/k̄: the curve starts beyond that
-        # (test_load_line.py::test_a_soft_spring_lands_beyond_the_usual_start).
-        x_start = disc.trace.x_start + 1.0 / spring_constant
-        disc = replace(disc, trace=replace(disc.trace, x_start=x_start))
+    by = _estimate_by(estimate_by, method, solid)
     options = dict(solid=solid, radius_ratio=radius_ratio, unstable_branch=unstable_branch,
                    spring_constant=spring_constant)
+    disc = _discretisation(mu, accuracy, method=method, p_end=p_end, options=options)
     if not error_estimate:
         return _solve_refining(mu, disc, progress=progress, **options)[0]
+    return _with_estimate(mu, disc, options, progress, by)
+
+
+def _estimate_by(estimate_by, method, solid):
+    """The estimate's kind ('finer' or 'bem') that `estimate_by` asks for (`ESTIMATE_BY`);
+    `InputError` for 'bem' where there is no FE of a homogeneous half-space to check."""
+    if estimate_by not in ESTIMATE_BY:
+        raise InputError(f"estimate_by must be one of {', '.join(ESTIMATE_BY)}; got "
+                         f"{estimate_by!r}")
+    checkable = method == "fem" and solid.layer_thickness is None
+    if estimate_by == "bem" and not checkable:
+        raise InputError("estimate_by='bem' checks the FE of a homogeneous half-space against "
+                         "the boundary integral; a BEM curve or a layer's takes 'finer' (or "
+                         "'auto')")
+    if estimate_by == "auto":
+        return "bem" if checkable else "finer"
+    return estimate_by
+
+
+def _with_estimate(mu, disc, options, progress, by):
+    """The curve on `disc` and its error estimate made as `by` says ('finer' or 'bem', see
+    `solve_curve`), in a second thread."""
     start = time.perf_counter()
-    whole = unstable_branch or spring_constant is not None
+    whole = options["unstable_branch"] or options["spring_constant"] is not None
     with threadpool_limits(PATH_BLAS_THREADS, user_api="blas"), ThreadPoolExecutor(1) as pool:
-        estimated = _estimated_by_whole_solve if whole else _estimated_near_events
+        if by == "bem":
+            estimated = _estimated_by_bem
+        else:
+            estimated = _estimated_by_whole_solve if whole else _estimated_near_events
         result, estimate, note, status = estimated(mu, disc, options, progress, pool)
-    if estimate is not None and result.regrid_change is not None:
+    if by == "finer" and estimate is not None and result.regrid_change is not None:
         moved = {**dict.fromkeys(FORCES, result.regrid_change),
                  **dict.fromkeys(RADII, result.regrid_radius_change),
                  **dict.fromkeys(FOLDS, result.regrid_fold_change)}
@@ -272,8 +309,8 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
                     for k, v in estimate.items()}
     if progress:
         progress(1.0)
-    return replace(result, error_estimate=estimate, status=status, message=result.message + note,
-                   wall_s=time.perf_counter() - start)
+    return replace(result, error_estimate=estimate, estimated_by=by, status=status,
+                   message=result.message + note, wall_s=time.perf_counter() - start)
 
 
 def _estimated_near_events(mu, disc, options, progress, pool):
@@ -350,6 +387,52 @@ def _estimated_by_whole_solve(mu, disc, options, progress, pool):
         return _without_estimate(result, exc)
 
 
+def _estimated_by_bem(mu, disc, options, progress, pool):
+    """(result, estimate, note, status): the FE curve and, on the second core alongside, the
+    boundary integral's curve at the same preset with its own 'finer' estimate, on grids that
+    follow the edge wherever the FE's do (`_against_partner`)."""
+    report_main, report_partner = _both(progress)
+    stop = threading.Event()  # set, the partner's curve ends at its next point
+    partner_disc = _discretisation(mu, disc.name, method="bem", p_end=disc.trace.p_end,
+                                   options=options, track_edge=disc.follows_edge or None)
+    partner_job = pool.submit(_with_estimate, mu, partner_disc, options,
+                              _stoppable(report_partner, stop), "finer")
+    try:
+        result, _, _ = _solve_refining(mu, disc, progress=report_main, **options)
+    except BaseException:  # an error or Ctrl-C: do not wait for the partner
+        stop.set()
+        raise
+    try:
+        partner = partner_job.result()
+        return (result, *_against_partner(result, partner), result.status)
+    except Exception as exc:  # the estimate never costs the result: whatever stopped it
+        return _without_estimate(result, exc)
+
+
+def _against_partner(result, partner):
+    """(estimate, note) of the events of the FE `result` from the boundary integral's `partner`
+    curve: per event DIFFERENCE_FACTOR |FE − BEM| plus the BEM's estimate; None where either
+    lacks the event or the BEM's estimate does. A partner that ripples, misses its jump or has
+    no estimate gives none (`ContinuationError`)."""
+    if partner.status != "ok" or partner.error_estimate is None:
+        raise ContinuationError(f"the boundary integral's curve has status {partner.status!r} "
+                                f"({partner.message})")
+    a, b = result.events.records(), partner.events.records()
+    estimate = {k: (DIFFERENCE_FACTOR * abs(a[k] - b[k]) + partner.error_estimate[k]
+                    if None not in (a[k], b[k], partner.error_estimate[k]) else None)
+                for k in ESTIMATED}
+    unestimated = [k for k in ESTIMATED
+                   if None not in (a[k], b[k]) and partner.error_estimate[k] is None]
+    note = _one_sided(a, b, partner="the boundary integral's curve")
+    if unestimated:
+        note += (f"; no error estimate for {', '.join(unestimated)}: the boundary integral's "
+                 f"own estimate has none")
+    note += (f"; error estimate against the boundary integral (BEM '{partner.accuracy}', "
+             f"{partner.points} points, {partner.wall_s:.1f} s alongside): "
+             f"{DIFFERENCE_FACTOR:g} |FE - BEM| plus the BEM's own estimate per event")
+    return estimate, note
+
+
 class _Stopped(Exception):
     """Raised inside the estimate's solve once it is no longer wanted."""
 
@@ -382,13 +465,25 @@ def _both(progress):
     return reporter(0), reporter(1)
 
 
-def _discretisation(mu, accuracy, *, solid, method, p_end, whole):
-    """The preset's discretisation, sized for the most compliant material (`sizing_mu`), on one
-    uniform grid where the `whole` curve is traced (the edge-following grids trace stable
-    branches) or a layer's correction would be rebuilt on every edge-following grid."""
-    uniform = whole or solid.layer_thickness is not None
-    return discretisation(sizing_mu(mu, solid), accuracy, p_end=p_end, method=method,
-                          track_edge=False if uniform else None)
+def _discretisation(mu, accuracy, *, method, p_end, options, track_edge=None):
+    """The preset's discretisation for a curve with `options` (`solve_curve`'s solid,
+    radius_ratio, unstable_branch and spring_constant), sized for the most compliant material
+    (`sizing_mu`), on one uniform grid where the whole curve is traced (the edge-following
+    grids trace stable branches) or a layer's correction would be rebuilt on every
+    edge-following grid; else grids that follow the edge as `track_edge` says
+    (`presets.discretisation`)."""
+    solid, spring_constant = options["solid"], options["spring_constant"]
+    uniform = (options["unstable_branch"] or spring_constant is not None
+               or solid.layer_thickness is not None)
+    disc = discretisation(sizing_mu(mu, solid), accuracy, p_end=p_end, method=method,
+                          track_edge=False if uniform else track_edge)
+    if spring_constant is None:
+        return disc
+    # The spring lets the sphere go at a force of at most Bradley's 1 (2πRΔγ), from δ̄o below
+    # x_start, so it lands below x_start + 1/k̄: the curve starts beyond that
+    # (test_load_line.py::test_a_soft_spring_lands_beyond_the_usual_start).
+    x_start = disc.trace.x_start + 1.0 / spring_constant
+    return replace(disc, trace=replace(disc.trace, x_start=x_start))
 
 
 def _mu(mu):
@@ -411,8 +506,9 @@ def solve_to_tolerance(mu, tolerance, *, method="fem", solid=Solid(), radius_rat
     is returned with a message saying so. Arguments otherwise as `solve_curve`."""
     mu = _mu(mu)
     tolerance = in_range("tolerance", tolerance, 0.0, 0.1)
-    disc = _discretisation(mu, "draft", solid=solid, method=method, p_end=p_end,
-                           whole=unstable_branch)
+    options = dict(solid=solid, radius_ratio=radius_ratio, unstable_branch=unstable_branch,
+                   spring_constant=None)
+    disc = _discretisation(mu, "draft", method=method, p_end=p_end, options=options)
 
     def level(k, d):
         report = (lambda f: progress((k + f) / max_levels)) if progress else None
@@ -432,6 +528,7 @@ def solve_to_tolerance(mu, tolerance, *, method="fem", solid=Solid(), radius_rat
                 + f" after {k + 1} levels (relative change {worst:.2g}, h = {disc.h_surface:.4g})")
         status = result.status if done else worst_status(result.status, "tolerance_not_met")
         result = replace(result, accuracy=f"tolerance {tolerance:g}", error_estimate=change,
+                         estimated_by="tolerance",
                          wall_s=wall + result.wall_s, status=status, message=result.message + note)
         if done:
             break
