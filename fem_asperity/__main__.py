@@ -113,7 +113,9 @@ def build_parser():
     sweep.add_argument("--accuracy", choices=tuple(PRESETS), default="default",
                        help="resolution of each curve (default: %(default)s)")
     sweep.add_argument("--no-error-estimate", action="store_true",
-                       help="skip each curve's error estimate (its events solved again finer)")
+                       help="skip each curve's error estimate (faster)")
+    sweep.add_argument("--estimate-by", choices=ESTIMATE_BY, default="auto",
+                       help="how each curve's error estimate is made (as for curve)")
     sweep.add_argument("--jobs", type=int, help="worker processes (default: one per core)")
     sweep.add_argument("--scheduler", metavar="ADDRESS",
                        help="run on the Dask cluster of this scheduler (tcp://host:8786) "
@@ -296,7 +298,8 @@ def _sweep(args, parser):
                      "mu); vary the inputs so that mu changes")
     bar = ProgressBar(f"{args.method.upper()} sweep of {len(mus)} mu", time_left=True)
     result = sweep(mus, method=args.method, accuracy=args.accuracy,
-                   error_estimate=not args.no_error_estimate, jobs=args.jobs,
+                   error_estimate=not args.no_error_estimate, estimate_by=args.estimate_by,
+                   jobs=args.jobs,
                    scheduler=args.scheduler, progress=bar, scales=scales or ())
     bar.close()
     result.write(out)

@@ -172,7 +172,7 @@ def test_curve_json_files_and_progress(tmp_path):
                "--out", str(out))
     assert done.returncode == 0, done.stderr
     events = json.loads(done.stdout)
-    assert CURVE_KEYS <= set(events)
+    assert CURVE_KEYS <= set(events) and events["estimated_by"] == "bem"
     assert events["jump_in"] is True and events["x_oc"] > 1.0
     assert events["delta_jump_out"] > events["delta_jump_in"]
     assert "100%" in done.stderr
@@ -234,6 +234,8 @@ def test_curve_json_files_and_progress(tmp_path):
      "--eps", "3e-10", "--R", "1e-6"],
     ["sweep", "--out", "x", "--E-star", "1e11", "--dgamma", "0.05", "--R", "1e-6"],
     ["onset", "--E-star", "1e11", "--dgamma", "0.05"],
+    # an estimate against the BEM of a BEM curve
+    ["curve", "--mu", "1", "--method", "bem", "--estimate-by", "bem"],
     ["scales", "--E1", "1e11", "--dgamma", "0.05", "--eps", "3e-10", "--R", "1e-6"],
     ["laws", "--E-star", "1e11", "--E1", "1e11", "--nu1", "0.3", "--dgamma", "0.05", "--eps",
      "3e-10", "--R", "1e-6"],
@@ -370,6 +372,7 @@ def test_curve_bem_json_and_files(tmp_path):
     assert done.returncode == 0, done.stderr
     events = json.loads(done.stdout)
     assert CURVE_KEYS <= set(events) and events["method"] == "bem"
+    assert events["estimated_by"] == "finer"
     assert events["p_off"] == pytest.approx(-0.83533, abs=5e-5)  # FE: -0.83532
     assert events["dofs"] == events["surface_nodes"]
     assert {p.name for p in out.iterdir()} == {"approach.csv", "retraction.csv",

@@ -100,3 +100,23 @@ def test_a_garbled_stored_onset_is_computed_again(tmp_path, monkeypatch):
     with pytest.warns(store.StoreWarning, match="corrupt"):
         again = onset.stored_onset(method="bem", accuracy="draft", cache=tmp_path)
     assert len(computed) == 2 and again.mu_onset == 0.697
+
+
+def test_each_kind_of_estimate_is_stored_apart_and_auto_shares_its_kinds_folder(tmp_path):
+    """The FE of a homogeneous half-space: 'auto' is 'bem', 'finer' is kept apart; a BEM curve's
+    'auto' is 'finer'; an unknown kind is refused before anything is solved."""
+    from fem_asperity import InputError
+    from fem_asperity.studies.sweep import sweep
+
+    def folder(method, by):
+        return store.curve_folder(1.0, method=method, accuracy="draft", error_estimate=True,
+                                  estimate_by=by, cache=tmp_path)
+
+    assert folder("fem", "auto") == folder("fem", "bem") != folder("fem", "finer")
+    assert folder("bem", "auto") == folder("bem", "finer")
+    assert "-estimated-finer-" in folder("bem", "auto").name
+    with pytest.raises(InputError, match="estimate_by"):
+        sweep([1.0], estimate_by="richardson", cache=tmp_path)
+    with pytest.raises(InputError, match="homogeneous half-space"):
+        sweep([1.0], method="bem", estimate_by="bem", cache=tmp_path)
+    assert not any(tmp_path.iterdir())

@@ -265,7 +265,7 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
         in_range("radius_ratio", radius_ratio, 10.0, np.inf, closed_lo=True)
     if spring_constant is not None:
         in_range("spring_constant", spring_constant, 0.0, SPRING_MAX)
-    by = _estimate_by(estimate_by, method, solid)
+    by = estimate_kind(estimate_by, method, solid)
     options = dict(solid=solid, radius_ratio=radius_ratio, unstable_branch=unstable_branch,
                    spring_constant=spring_constant)
     disc = _discretisation(mu, accuracy, method=method, p_end=p_end, options=options)
@@ -274,9 +274,10 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     return _with_estimate(mu, disc, options, progress, by)
 
 
-def _estimate_by(estimate_by, method, solid):
-    """The estimate's kind ('finer' or 'bem') that `estimate_by` asks for (`ESTIMATE_BY`);
-    `InputError` for 'bem' where there is no FE of a homogeneous half-space to check."""
+def estimate_kind(estimate_by, method, solid):
+    """The kind of error estimate ('finer' or 'bem') that `estimate_by` (`ESTIMATE_BY`) asks
+    for on a curve of `method` and `solid`; `InputError` for 'bem' where there is no FE of a
+    homogeneous half-space to check."""
     if estimate_by not in ESTIMATE_BY:
         raise InputError(f"estimate_by must be one of {', '.join(ESTIMATE_BY)}; got "
                          f"{estimate_by!r}")

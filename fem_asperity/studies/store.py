@@ -24,7 +24,7 @@ from ..plumbing.files import writable_folder, write_atomic
 from ..plumbing.revision import solver_revision
 from ..solids.fe import Solid
 from ..solver.result import curve_files, relative_estimate
-from ..solver.solve import solve_curve
+from ..solver.solve import estimate_kind, solve_curve
 
 #: Cost columns of a stored curve (from its result.json).
 COST_KEYS = ("dofs", "surface_nodes", "points", "newton_iterations", "wall_s")
@@ -73,13 +73,14 @@ def mu_key(mu):
     return float(f"{float(mu):.12g}")
 
 
-def curve_folder(mu, *, method, accuracy, error_estimate, unstable_branch=False, solid=Solid(),
-                 cache=None):
+def curve_folder(mu, *, method, accuracy, error_estimate, estimate_by="auto",
+                 unstable_branch=False, solid=Solid(), cache=None):
     """Where the curve at (`mu`, method, accuracy, solid) of this solver revision is stored;
-    curves with and without the error estimate, and with the whole equilibrium curve
-    (`unstable_branch`), are kept apart (each costs more); a solid other than the default adds
-    its Poisson's ratio and layer."""
-    extras = ("-estimated" if error_estimate else "") + ("-whole" if unstable_branch else "")
+    curves without the error estimate, with each kind of it (`solve.estimate_kind` of
+    `estimate_by`), and with the whole equilibrium curve (`unstable_branch`), are kept apart
+    (each costs more); a solid other than the default adds its Poisson's ratio and layer."""
+    extras = (f"-estimated-{estimate_kind(estimate_by, method, solid)}" if error_estimate
+              else "") + ("-whole" if unstable_branch else "")
     if solid.layer_thickness is not None:
         extras += (f"-layer-t{solid.layer_thickness:.12g}-M{solid.layer_modulus_ratio:.12g}"
                    f"-nu{solid.nu:.12g}-{solid.layer_nu:.12g}")

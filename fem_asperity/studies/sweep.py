@@ -95,9 +95,10 @@ class SweepRow:
 @dataclass(frozen=True)
 class Sweep:
     """The rows of a sweep (by increasing μ) and how they were obtained: method, accuracy,
-    whether with the error estimate, how many curves were solved now and how many read from the
-    store, and the wall time; the `solid` of every curve. `scales`: the physical inputs
-    (`Scales`) of the μ that came from them; their rows gain the inputs and every event in SI."""
+    whether with the error estimate and how it was asked for (`estimate_by`), how many curves
+    were solved now and how many read from the store, and the wall time; the `solid` of every
+    curve. `scales`: the physical inputs (`Scales`) of the μ that came from them; their rows
+    gain the inputs and every event in SI."""
 
     method: str
     accuracy: str
@@ -108,6 +109,7 @@ class Sweep:
     wall_s: float
     scales: tuple = ()
     solid: Solid = Solid()
+    estimate_by: str = "auto"
 
     @property
     def failed(self):
@@ -152,7 +154,8 @@ class Sweep:
     def records(self):
         """The sidecar sweep.json: inputs, counters, units and provenance."""
         return {"method": self.method, "accuracy": self.accuracy,
-                "error_estimate": self.error_estimate, "solid": asdict(self.solid),
+                "error_estimate": self.error_estimate, "estimate_by": self.estimate_by,
+                "solid": asdict(self.solid),
                 "mu": [row.mu for row in self.rows],
                 "solved": self.solved, "stored": self.stored, "failed": len(self.failed),
                 "wall_s": self.wall_s, "solver_revision": solver_revision(),
@@ -199,12 +202,12 @@ def mu_range(lo, hi, n):
     return [float(m) for m in np.geomspace(lo, hi, int(n))]
 
 
-def solve_for_sweep(mu, method, accuracy, error_estimate, solid=Solid()):
+def solve_for_sweep(mu, method, accuracy, error_estimate, solid=Solid(), estimate_by="auto"):
     """The worker's job: one curve, without its solved model (it does not travel between
     processes), or the exception that stopped it."""
     try:
         result = solve_curve(mu, method=method, accuracy=accuracy, error_estimate=error_estimate,
-                             solid=solid)
+                             estimate_by=estimate_by, solid=solid)
     except Exception as exc:  # reported in the μ's row; the sweep goes on
         return exc
     return replace(result, model=None)
@@ -267,12 +270,13 @@ def _cluster_jobs(scheduler, todo, args):
             yield futures[future], result
 
 
-def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, solid=Solid(),
-          jobs=None, scheduler=None, cache=None, progress=None, scales=()):
+def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, estimate_by="auto",
+          solid=Solid(), jobs=None, scheduler=None, cache=None, progress=None, scales=()):
     """Solve the curves at every μ of `mus` (those not stored yet) and return the `Sweep`.
 
-    method, accuracy, error_estimate, solid: as `solve_curve`. jobs: worker processes on this
-    machine (default: one per core); scheduler: address of a Dask scheduler instead ('tcp://host:8786').
+    method, accuracy, error_estimate, estimate_by, solid: as `solve_curve`. jobs: worker
+    processes on this machine (default: one per core); scheduler: address of a Dask scheduler
+    instead ('tcp://host:8786').
     cache: the store's folder (default $ADHESION_CACHE). progress: callable(fraction of the
     curves to solve that are done), called as each finishes. scales: the `Scales` the μ came
     from (physical inputs), for SI columns in the events.
@@ -291,11 +295,12 @@ def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, solid=S
     writable_folder(cache or cache_dir(), "the store ($ADHESION_CACHE)")  # before solving
     start = time.perf_counter()
     folders = {mu: curve_folder(mu, method=method, accuracy=accuracy, solid=solid,
-                                error_estimate=error_estimate, cache=cache) for mu in mus}
+                                error_estimate=error_estimate, estimate_by=estimate_by,
+                                cache=cache) for mu in mus}
     stored = {mu: load_stored(folders[mu]) for mu in mus}
     todo = [mu for mu in mus if stored[mu] is None]
     failures = {}
-    args = (method, accuracy, error_estimate, solid)
+    args = (method, accuracy, error_estimate, solid, estimate_by)
     runs = (_cluster_jobs(scheduler, todo, args) if scheduler
             else _local_jobs(int(jobs), todo, args))
     for done, (mu, result) in enumerate(runs, 1):
@@ -314,5 +319,5 @@ def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, solid=S
             rows.append(SweepRow(mu, stored[mu].status, stored[mu].message, stored[mu]))
     return Sweep(method, accuracy, error_estimate, tuple(rows), solved=len(todo) - len(failures),
                  stored=len(mus) - len(todo), wall_s=time.perf_counter() - start,
-                 scales=tuple(scales), solid=solid)
+                 scales=tuple(scales), solid=solid, estimate_by=estimate_by)
 
