@@ -180,6 +180,9 @@ def _curve(args, parser):
         writable_folder(args.out, "--out")  # before solving
     if args.spring_constant is not None and args.tolerance is not None:
         parser.error("curve: --spring-constant takes a preset (--accuracy), not --tolerance")
+    if args.estimate_by != "auto" and args.tolerance is not None:
+        parser.error("curve: --tolerance estimates by the change between its levels; "
+                     "--estimate-by takes a preset (--accuracy)")
     solid = _solid(args, parser, scales)
     spring = args.spring_constant
     if spring is not None and scales is not None:  # N/m → 2πRΔγ/ε

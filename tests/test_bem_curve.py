@@ -51,6 +51,18 @@ def test_the_fes_estimate_against_the_bem_bounds_its_error():
         assert abs(a[key] - r[key]) <= fem.error_estimate[key], key
 
 
+def test_a_whole_fe_curve_is_estimated_against_the_whole_bem_curve():
+    """With the unstable branches (and so under a cantilever) both curves are traced whole, on
+    uniform grids; the estimate is composed alike."""
+    fem = solve_curve(1.0, accuracy="draft", unstable_branch=True)
+    bem = solve_curve(1.0, method="bem", accuracy="draft", unstable_branch=True)
+    assert fem.estimated_by == "bem" and fem.status == "ok"
+    a, b = fem.events.records(), bem.events.records()
+    for key in ("p_off", "delta_jump_in", "delta_jump_out"):
+        expected = 2.0 * abs(a[key] - b[key]) + bem.error_estimate[key]
+        assert fem.error_estimate[key] == pytest.approx(expected, rel=1e-9), key
+
+
 def test_the_fes_estimate_is_none_if_the_bem_curve_fails_and_stops_with_the_fe(monkeypatch):
     """The boundary integral's curve alongside the FE: if it fails, the FE curve is kept
     without an estimate; if the FE stops (Ctrl-C), the BEM curve ends at its next point

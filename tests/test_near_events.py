@@ -21,7 +21,7 @@ OPTIONS = dict(solid=Solid(), radius_ratio=None, unstable_branch=False, spring_c
 
 def _solved(mu, method, accuracy):
     """(curve, the discretisation it was solved on, its trace), as `solve_curve` solves it."""
-    disc = _discretisation(mu, accuracy, solid=Solid(), method=method, p_end=1.0, whole=False)
+    disc = _discretisation(mu, accuracy, method=method, p_end=1.0, options=OPTIONS)
     return _solve_refining(mu, disc, **OPTIONS)
 
 

@@ -46,6 +46,7 @@ def test_two_worker_processes_give_the_serial_events(serial, swept):
     for row in result.rows:
         assert row.curve.events.records() == serial[row.mu]
         assert row.curve.error_estimate is not None and row.status == "ok"
+        assert row.curve.estimated_by == "finer"  # a BEM curve's, stored and read back
 
 
 def test_a_second_sweep_reads_the_store(swept):

@@ -14,10 +14,11 @@ from ..solids.operator import ElasticSurface
 
 #: Values of `CurveResult.status`, from the best to the worst news.
 #: ok: no more folds than one jump-in and one jump-out, the estimate (if asked for) obtained and
-#: the tolerance (if one was set) met. no_estimate: the error estimate's finer solve failed or
-#: rippled. ripples: more folds than two after the refinements, the sign of a surface mesh too
-#: coarse for μ. missed_jump: above the onset of jump-in, yet no jump-in found on any refinement
-#: tried. tolerance_not_met: `solve_to_tolerance` ran out of levels.
+#: the tolerance (if one was set) met. no_estimate: the error estimate's second solve (finer, or
+#: the boundary integral's curve) failed or rippled. ripples: more folds than two after the
+#: refinements, the sign of a surface mesh too coarse for μ. missed_jump: above the onset of
+#: jump-in, yet no jump-in found on any refinement tried. tolerance_not_met:
+#: `solve_to_tolerance` ran out of levels.
 STATUSES = ("ok", "no_estimate", "ripples", "missed_jump", "tolerance_not_met")
 #: Folds of δ̄o the physics has at most: one jump-in and one jump-out; more are ripple.
 PHYSICAL_FOLDS = 2

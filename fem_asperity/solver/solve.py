@@ -9,11 +9,12 @@ exact extrema of P̄; approach and retraction under δ̄o control read off it, j
 `path.branches`, `path.whole_curve`). The error estimate is twice the change of each event on
 a finer discretisation (`for_estimate()` of the `solver.presets` discretisation, `_estimate`);
 the FE of a homogeneous half-space is instead checked against the boundary integral
-(`_against_partner`)."""
+(`_estimate_against_bem`)."""
 
 import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
+from contextlib import contextmanager
 from dataclasses import replace
 
 import numpy as np
@@ -208,15 +209,15 @@ def _estimate(a, disc, b, partner_disc):
             for k in ESTIMATED}
 
 
-def _one_sided(a, b, partner="its finer estimate discretisation"):
-    """A message naming the estimated events (records `a` of the solve, `b` of its `partner`)
-    that one of the two has and the other not (a jump one discretisation finds and the other
-    misses): their estimate is None."""
+def _one_sided(a, b, other_named="its finer estimate discretisation"):
+    """A message naming the estimated events (records `a` of the solve, `b` of the other solve,
+    `other_named`) that one of the two has and the other not (a jump one discretisation finds
+    and the other misses): their estimate is None."""
     keys = [k for k in ESTIMATED if (a[k] is None) != (b[k] is None)]
     if not keys:
         return ""
-    return (f"; {', '.join(keys)} found by only one of the solve and {partner} (no estimate "
-            f"for them): try a finer accuracy")
+    return (f"; {', '.join(keys)} found by only one of the solve and {other_named} (no "
+            f"estimate for them): try a finer accuracy")
 
 
 def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_ratio=None,
@@ -246,9 +247,9 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
         the whole curve again alongside.
         'bem' (the FE of a homogeneous half-space only): the boundary integral's curve at the
         same preset, with its own 'finer' estimate, solved alongside on the second core; per
-        event DIFFERENCE_FACTOR |FE − BEM| plus the BEM's estimate (`_against_partner`). It
-        costs about as much as the FE's curve instead of 2.5-5 times, and bounds the FE's whole
-        error (its bulk mesh and truncation included) with an independent method.
+        event DIFFERENCE_FACTOR |FE − BEM| plus the BEM's estimate (`_estimate_against_bem`). It
+        costs about as much as the FE's curve instead of 2.5-5 times, and estimates the FE's
+        whole error (its bulk mesh and truncation included) with an independent method.
         'auto' (default): 'bem' for the FE of a homogeneous half-space, else 'finer'.
     spring_constant: load-line control, as through an AFM cantilever, with a spring of this
         stiffness k̄ = Kε/(2πRΔγ) (> 0): the jumps come where dP̄/dδ̄o reaches k̄, and the
@@ -295,12 +296,13 @@ def _with_estimate(mu, disc, options, progress, by):
     """The curve on `disc` and its error estimate made as `by` says ('finer' or 'bem', see
     `solve_curve`), in a second thread."""
     start = time.perf_counter()
-    whole = options["unstable_branch"] or options["spring_constant"] is not None
+    if by == "bem":
+        estimated = _estimated_by_bem
+    elif options["unstable_branch"] or options["spring_constant"] is not None:
+        estimated = _estimated_by_whole_solve
+    else:
+        estimated = _estimated_near_events
     with threadpool_limits(PATH_BLAS_THREADS, user_api="blas"), ThreadPoolExecutor(1) as pool:
-        if by == "bem":
-            estimated = _estimated_by_bem
-        else:
-            estimated = _estimated_by_whole_solve if whole else _estimated_near_events
         result, estimate, note, status = estimated(mu, disc, options, progress, pool)
     if by == "finer" and estimate is not None and result.regrid_change is not None:
         moved = {**dict.fromkeys(FORCES, result.regrid_change),
@@ -351,11 +353,26 @@ def _missed(missed):
                    for reason, keys in reasons.items())
 
 
-def _without_estimate(result, exc):
-    """(result, estimate, note, status) of a curve whose estimate's solve failed with `exc`."""
-    return result, None, (f"; no error estimate: its finer solve failed "
-                          f"({type(exc).__name__}: {exc})"), worst_status(result.status,
-                                                                        "no_estimate")
+def _without_estimate(result, exc, what="its finer solve"):
+    """(result, estimate, note, status) of a curve whose estimate's solve (`what`) failed with
+    `exc`."""
+    return result, None, (f"; no error estimate: {what} failed ({type(exc).__name__}: {exc})"
+                          ), worst_status(result.status, "no_estimate")
+
+
+@contextmanager
+def _alongside(pool, progress, job, *args, **kwargs):
+    """`job(*args, progress=..., **kwargs)` run on `pool` while the block traces the curve,
+    the bar showing the slower of the two (`_both`). Yields (the curve's progress callback,
+    the job's future, the event that stops it); whatever ends the block (its result, an error,
+    Ctrl-C), the job ends at its next point (`_stoppable`) instead of being waited for."""
+    report_main, report_job = _both(progress)
+    stop = threading.Event()
+    future = pool.submit(job, *args, progress=_stoppable(report_job, stop), **kwargs)
+    try:
+        yield report_main, future, stop
+    finally:
+        stop.set()
 
 
 def _estimated_by_whole_solve(mu, disc, options, progress, pool):
@@ -363,54 +380,42 @@ def _estimated_by_whole_solve(mu, disc, options, progress, pool):
     curve again on the estimate's discretisation (the whole curve, unstable branches included,
     holds the load-line events, which `path.near_events` does not follow)."""
     # The dense factorisations release the GIL, so the two curves share the two cores (one BLAS
-    # thread each). The bar shows the slower.
-    report_main, report_finer = _both(progress)
-    stop = threading.Event()  # set, the estimate's solve ends at its next point
-    finer_job = pool.submit(solve_discretised, mu, disc.for_estimate(),
-                            progress=_stoppable(report_finer, stop), **options)
-    try:
-        result, solved_on, _ = _solve_refining(mu, disc, progress=report_main, **options)
-    except BaseException:  # an error or Ctrl-C: do not wait for the longer solve
-        stop.set()
-        raise
-    try:
-        partner_on = solved_on.for_estimate()
-        if solved_on is disc:
-            partner = finer_job.result()
-        else:  # refined for ripple or a missed jump: its own partner
-            stop.set()
-            partner = solve_discretised(mu, partner_on, **options)
-        if partner.ripples:
-            raise ContinuationError(f"it rippled ({partner.folds} folds)")
-        a, b = result.events.records(), partner.events.records()
-        return result, _estimate(a, solved_on, b, partner_on), _one_sided(a, b), result.status
-    except Exception as exc:  # the estimate never costs the result: whatever stopped it
-        return _without_estimate(result, exc)
+    # thread each).
+    with _alongside(pool, progress, solve_discretised, mu, disc.for_estimate(),
+                    **options) as (report, finer_job, stop):
+        result, solved_on, _ = _solve_refining(mu, disc, progress=report, **options)
+        try:
+            partner_on = solved_on.for_estimate()
+            if solved_on is disc:
+                partner = finer_job.result()
+            else:  # refined for ripple or a missed jump: its own partner
+                stop.set()
+                partner = solve_discretised(mu, partner_on, **options)
+            if partner.ripples:
+                raise ContinuationError(f"it rippled ({partner.folds} folds)")
+            a, b = result.events.records(), partner.events.records()
+            return (result, _estimate(a, solved_on, b, partner_on), _one_sided(a, b),
+                    result.status)
+        except Exception as exc:  # the estimate never costs the result: whatever stopped it
+            return _without_estimate(result, exc)
 
 
 def _estimated_by_bem(mu, disc, options, progress, pool):
     """(result, estimate, note, status): the FE curve and, on the second core alongside, the
-    boundary integral's curve at the same preset with its own 'finer' estimate, on grids that
-    follow the edge wherever the FE's do (`_against_partner`)."""
-    report_main, report_partner = _both(progress)
-    stop = threading.Event()  # set, the partner's curve ends at its next point
-    partner_disc = _discretisation(mu, disc.name, method="bem", p_end=disc.trace.p_end,
-                                   options=options, track_edge=disc.follows_edge or None)
-    partner_job = pool.submit(_with_estimate, mu, partner_disc, options,
-                              _stoppable(report_partner, stop), "finer")
-    try:
-        result, _, _ = _solve_refining(mu, disc, progress=report_main, **options)
-    except BaseException:  # an error or Ctrl-C: do not wait for the partner
-        stop.set()
-        raise
-    try:
-        partner = partner_job.result()
-        return (result, *_against_partner(result, partner), result.status)
-    except Exception as exc:  # the estimate never costs the result: whatever stopped it
-        return _without_estimate(result, exc)
+    boundary integral's curve at the FE's preset (`disc.name`) with its own 'finer' estimate,
+    on grids that follow the edge wherever the FE's do (`_estimate_against_bem`)."""
+    bem_disc = _discretisation(mu, disc.name, method="bem", p_end=disc.trace.p_end,
+                               options=options, track_edge=disc.follows_edge or None)
+    with _alongside(pool, progress, _with_estimate, mu, bem_disc, options,
+                    by="finer") as (report, bem_job, _):
+        result, _, _ = _solve_refining(mu, disc, progress=report, **options)
+        try:
+            return (result, *_estimate_against_bem(result, bem_job.result()), result.status)
+        except Exception as exc:  # the estimate never costs the result: whatever stopped it
+            return _without_estimate(result, exc, "the boundary integral's curve")
 
 
-def _against_partner(result, partner):
+def _estimate_against_bem(result, partner):
     """(estimate, note) of the events of the FE `result` from the boundary integral's `partner`
     curve: per event DIFFERENCE_FACTOR |FE − BEM| plus the BEM's estimate; None where either
     lacks the event or the BEM's estimate does. A partner that ripples, misses its jump or has
@@ -424,7 +429,7 @@ def _against_partner(result, partner):
                 for k in ESTIMATED}
     unestimated = [k for k in ESTIMATED
                    if None not in (a[k], b[k]) and partner.error_estimate[k] is None]
-    note = _one_sided(a, b, partner="the boundary integral's curve")
+    note = _one_sided(a, b, other_named="the boundary integral's curve")
     if unestimated:
         note += (f"; no error estimate for {', '.join(unestimated)}: the boundary integral's "
                  f"own estimate has none")

@@ -34,9 +34,9 @@ COST_KEYS = ("dofs", "surface_nodes", "points", "newton_iterations", "wall_s")
 class StoredCurve:
     """A stored curve: its approach and retraction paths and the equilibrium curve traced
     (`Curve`; the whole curve where stored with `unstable_branch`), `Events`, the error estimate
-    (None where the curve was stored without one), the solve's status and message
-    (`CurveResult.status`: 'ok' unless it calls for a finer accuracy), its cost (`COST_KEYS`)
-    and its folder."""
+    (None where the curve was stored without one) and how it was made (`estimated_by`), the
+    solve's status and message (`CurveResult.status`: 'ok' unless it calls for a finer
+    accuracy), its cost (`COST_KEYS`) and its folder."""
 
     mu: float
     method: str
@@ -50,6 +50,7 @@ class StoredCurve:
     message: str
     cost: dict
     folder: Path
+    estimated_by: str | None = None
 
     @property
     def relative_error_estimate(self):
@@ -79,8 +80,9 @@ def curve_folder(mu, *, method, accuracy, error_estimate, estimate_by="auto",
     curves without the error estimate, with each kind of it (`solve.estimate_kind` of
     `estimate_by`), and with the whole equilibrium curve (`unstable_branch`), are kept apart
     (each costs more); a solid other than the default adds its Poisson's ratio and layer."""
-    extras = (f"-estimated-{estimate_kind(estimate_by, method, solid)}" if error_estimate
-              else "") + ("-whole" if unstable_branch else "")
+    kind = estimate_kind(estimate_by, method, solid)  # refused as solve_curve refuses it
+    extras = (f"-estimated-{kind}" if error_estimate else "") + ("-whole" if unstable_branch
+                                                                 else "")
     if solid.layer_thickness is not None:
         extras += (f"-layer-t{solid.layer_thickness:.12g}-M{solid.layer_modulus_ratio:.12g}"
                    f"-nu{solid.nu:.12g}-{solid.layer_nu:.12g}")
@@ -179,7 +181,8 @@ def _parse(folder, files):
                        _curve(files["approach.csv"]), _curve(files["retraction.csv"]),
                        _curve(files["equilibrium.csv"]), _events_from_dict(events),
                        result["error_estimate"], result["status"], result["message"],
-                       {key: result[key] for key in COST_KEYS}, folder)
+                       {key: result[key] for key in COST_KEYS}, folder,
+                       result["estimated_by"])
 
 
 def load_stored(folder):
