@@ -16,6 +16,9 @@ fold near the onset of jump-in); the whole finer solve (`solver.solve.solve_disc
 those.
 """
 
+import threading
+from concurrent.futures import ThreadPoolExecutor
+
 import numpy as np
 
 from ..plumbing.errors import ContinuationError
@@ -72,12 +75,18 @@ def events_near(grids, settings, traced, branch, approach, retraction, jump_in, 
         found.update(zip(keys, values(result)))
         return result
 
-    fine_in = jump_in and attempt(
-        ("x_oc", "delta_jump_in", "p_jump_after"), lambda: near.jump(approach, jump_in, land=True),
-        lambda fine: (fine[0].x_before, fine[0].delta, fine[0].p_after))
-    fine_out = jump_out and attempt(
-        ("delta_jump_out",), lambda: near.jump(retraction, jump_out, land=False),
-        lambda fine: (fine[0].delta,))
+    # The two folds' windows are independent: the jump-out's is traced on a second thread
+    # (the curve's own solve has ended, its core is free; the dense factorisations release the
+    # GIL) while the jump-in's is traced here. Its results are the same to the bit
+    # (test_near_events.py compares with a whole finer solve).
+    with ThreadPoolExecutor(1) as side:
+        out = jump_out and side.submit(near.jump, retraction, jump_out, land=False)
+        fine_in = jump_in and attempt(
+            ("x_oc", "delta_jump_in", "p_jump_after"),
+            lambda: near.jump(approach, jump_in, land=True),
+            lambda fine: (fine[0].x_before, fine[0].delta, fine[0].p_after))
+        fine_out = jump_out and attempt(("delta_jump_out",), out.result,
+                                        lambda fine: (fine[0].delta,))
     jumps = ((jump_in, fine_in), (jump_out, fine_out))
     attempt(("p_max", "delta_oc", "a_c"), lambda: near.most_tensile(approach, *jumps))
     attempt(("p_off",), lambda: near.most_tensile(retraction, *jumps)[:1])
@@ -92,6 +101,13 @@ class _Near:
     def __init__(self, grids, settings, traced, branch):
         self.grids, self.settings, self.traced, self.branch = grids, settings, traced, branch
         self.newton_iterations, self.windows, self._windows = 0, 0, {}
+        self._counting = threading.Lock()  # windows are traced on two threads at once
+
+    def _count(self, iterations, windows=0):
+        """Add to the counters (from either thread)."""
+        with self._counting:
+            self.newton_iterations += iterations
+            self.windows += windows
 
     def index(self, delta, p):
         """Index in the trace of the point with exactly this δ̄o and P̄ (a path's rows are
@@ -118,7 +134,7 @@ class _Near:
             if solved is None:
                 return None
             w, delta, iterations, _ = solved
-            self.newton_iterations += iterations
+            self._count(iterations)
             if self.grids.fits(surface, w, delta):
                 break
             surface, w = self.grids.transplant(surface.r_nodes, w, delta)
@@ -154,8 +170,7 @@ class _Near:
 
         branch, fold = follow_branch(self.grids, surface, w, delta, heading, self.settings, done,
                                      None)[:2]
-        self.newton_iterations += branch.newton_iterations
-        self.windows += 1
+        self._count(branch.newton_iterations, windows=1)
         if until is None:
             self._windows[key] = branch, fold
         return branch, fold
@@ -189,7 +204,7 @@ class _Near:
             t = self.traced
             surface, w = self.grids.transplant(t.nodes[landing], t.states[landing], delta)
             surface, w, iterations = self.grids.land(surface, w, delta, tol=self.settings.tol)
-            self.newton_iterations += iterations
+            self._count(iterations)
             after = dict(p_after=surface.force(w, delta), a_c_after=surface.contact(w, delta)[1],
                          x_after=surface.centre_gap(w, delta))
         return Jump(delta=delta, x_before=before["x"], p_before=before["p"], **after), before
@@ -261,5 +276,5 @@ class _Near:
                          tol=self.settings.tol, max_newton=MOVED_NEWTON)
         if solved is None:
             raise NotNear("no state with a centre gap of 1 near the finer window's crossing")
-        self.newton_iterations += solved[2]
+        self._count(solved[2])
         return float(solved[1])
