@@ -2,6 +2,8 @@
 the same events from a whole finer solve: the estimate must not depend on which of the two made
 it. References: the whole solve on the estimate's discretisation (`solve_discretised`)."""
 
+from concurrent.futures import Future
+
 import numpy as np
 import pytest
 
@@ -88,6 +90,45 @@ def test_events_near_each_event_are_the_whole_finer_solves(mu, method, accuracy)
         share = 0.1 if tracked else 1e-3
         assert near[key] == pytest.approx(whole[key],
                                           abs=share * difference + 1e-9 + placed[key]), key
+
+
+class _OneAfterTheOther:
+    """An executor that runs each job when it is submitted: the windows one after the other."""
+
+    def __init__(self, workers):
+        pass
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        return False
+
+    def submit(self, job, *args, **kwargs):
+        done = Future()
+        try:
+            done.set_result(job(*args, **kwargs))
+        except BaseException as exc:  # as a thread's future holds it
+            done.set_exception(exc)
+        return done
+
+
+def test_the_folds_traced_at_once_give_the_events_of_one_after_the_other(monkeypatch):
+    """The jump-out's window traced on a second thread while the jump-in's is traced: the
+    same events and counters, to the bit, as with the windows one after the other."""
+    import fem_asperity.path.near_events as near_events
+
+    result, solved_on, traced = _solved(1.0, "bem", "draft")
+    partner = solved_on.for_estimate()
+
+    def near():
+        return events_near(partner.grids(1.0), partner.trace, traced, result.equilibrium.branch,
+                           result.approach, result.retraction, result.events.jump_in,
+                           result.events.jump_out)
+
+    at_once = near()
+    monkeypatch.setattr(near_events, "ThreadPoolExecutor", _OneAfterTheOther)
+    assert near() == at_once and at_once["delta_jump_out"] is not None
 
 
 def test_the_estimate_costs_less_than_the_solve_in_newton_iterations():

@@ -75,18 +75,24 @@ def events_near(grids, settings, traced, branch, approach, retraction, jump_in, 
         found.update(zip(keys, values(result)))
         return result
 
-    # The two folds' windows are independent: the jump-out's is traced on a second thread
-    # (the curve's own solve has ended, its core is free; the dense factorisations release the
-    # GIL) while the jump-in's is traced here. Its results are the same to the bit
-    # (test_near_events.py compares with a whole finer solve).
+    # The two folds' windows are independent: the jump-out's is traced on a second thread while
+    # the jump-in's is traced here (the curve they estimate has been traced by then, so its
+    # thread waits; the dense factorisations release the GIL). Each thread reads the trace and
+    # builds its own states; what both write is locked (the counters) or keyed apart (the
+    # window cache; the grids' counters, which events_near's callers do not read). The same
+    # events as one after the other: test_near_events.py.
     with ThreadPoolExecutor(1) as side:
         out = jump_out and side.submit(near.jump, retraction, jump_out, land=False)
-        fine_in = jump_in and attempt(
-            ("x_oc", "delta_jump_in", "p_jump_after"),
-            lambda: near.jump(approach, jump_in, land=True),
-            lambda fine: (fine[0].x_before, fine[0].delta, fine[0].p_after))
-        fine_out = jump_out and attempt(("delta_jump_out",), out.result,
-                                        lambda fine: (fine[0].delta,))
+        try:
+            fine_in = jump_in and attempt(
+                ("x_oc", "delta_jump_in", "p_jump_after"),
+                lambda: near.jump(approach, jump_in, land=True),
+                lambda fine: (fine[0].x_before, fine[0].delta, fine[0].p_after))
+            fine_out = jump_out and attempt(("delta_jump_out",), out.result,
+                                            lambda fine: (fine[0].delta,))
+        except BaseException:  # an error or Ctrl-C here: the other window ends at its next step
+            near.stop.set()
+            raise
     jumps = ((jump_in, fine_in), (jump_out, fine_out))
     attempt(("p_max", "delta_oc", "a_c"), lambda: near.most_tensile(approach, *jumps))
     attempt(("p_off",), lambda: near.most_tensile(retraction, *jumps)[:1])
@@ -102,6 +108,7 @@ class _Near:
         self.grids, self.settings, self.traced, self.branch = grids, settings, traced, branch
         self.newton_iterations, self.windows, self._windows = 0, 0, {}
         self._counting = threading.Lock()  # windows are traced on two threads at once
+        self.stop = threading.Event()  # set, a window being traced ends at its next step
 
     def _count(self, iterations, windows=0):
         """Add to the counters (from either thread)."""
@@ -165,6 +172,8 @@ class _Near:
         sign = np.sign(heading[1])
 
         def done(tr):
+            if self.stop.is_set():
+                raise NotNear("stopped: the other window's thread ended with an error")
             return sign * (tr.delta[-1] - after_delta) >= 0.0 or (until is not None
                                                                  and until(tr))
 

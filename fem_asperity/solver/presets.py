@@ -123,7 +123,7 @@ METHODS = ("fem", "bem")
 #: How a curve's error estimate is made (`solve_curve`'s estimate_by): 'finer', its events
 #: solved again on its finer discretisation; 'bem', the FE against the boundary integral's
 #: curve at the same preset with that curve's own ('finer') estimate; 'auto', 'bem' for the FE
-#: of a homogeneous half-space, else 'finer'. The FE's finer half-space cost 2.5-5 times its
+#: of a homogeneous half-space, else 'finer'. The FE's finer half-space cost 2.5-5.3 times its
 #: curve (its condensation; docs/accuracy-study.md at 9f5dc20, benchmarks/results/
 #: large_mu-tip-after.md), the boundary integral's curve with its estimate about as much as the
 #: FE's curve, alongside it on the second core (benchmarks/results/large_mu-bem-partner-after.md).

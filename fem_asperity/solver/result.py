@@ -60,7 +60,7 @@ class CurveResult:
     in the event's units (None where not estimated); relative_error_estimate holds the same
     relative to the event. estimated_by: how the estimate was made, 'finer' (the events again
     on a finer discretisation, `solve._estimate`), 'bem' (the FE against the boundary
-    integral, `solve._against_partner`), 'tolerance' (the last change between refinement
+    integral, `solve._estimate_against_bem`), 'tolerance' (the last change between refinement
     levels, `solve.solve_to_tolerance`) or None (no estimate asked for).
     dofs, surface_nodes, points, newton_iterations, wall_s: cost.
     folds: folds of δ̄o met: changes of stability along the whole curve, or jumps of the paths.

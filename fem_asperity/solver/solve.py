@@ -248,7 +248,7 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
         'bem' (the FE of a homogeneous half-space only): the boundary integral's curve at the
         same preset, with its own 'finer' estimate, solved alongside on the second core; per
         event DIFFERENCE_FACTOR |FE − BEM| plus the BEM's estimate (`_estimate_against_bem`). It
-        costs about as much as the FE's curve instead of 2.5-5 times, and estimates the FE's
+        costs about as much as the FE's curve instead of 2.5-5.3 times, and estimates the FE's
         whole error (its bulk mesh and truncation included) with an independent method.
         'auto' (default): 'bem' for the FE of a homogeneous half-space, else 'finer'.
     spring_constant: load-line control, as through an AFM cantilever, with a spring of this
