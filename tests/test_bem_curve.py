@@ -80,6 +80,7 @@ def test_the_fes_estimate_is_none_if_the_bem_curve_fails_and_stops_with_the_fe(m
     result = solve.solve_curve(1.0, accuracy="draft")
     assert result.error_estimate is None and result.status == "no_estimate"
     assert "InputError" in result.message and result.events.jump_in is not None
+    assert "estimate_by='finer'" in result.message  # what to do instead
 
     def interrupted(mu, disc, **kwargs):
         if disc.method == "fem":

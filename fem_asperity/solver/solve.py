@@ -353,11 +353,11 @@ def _missed(missed):
                    for reason, keys in reasons.items())
 
 
-def _without_estimate(result, exc, what="its finer solve"):
+def _without_estimate(result, exc, what="its finer solve", hint=""):
     """(result, estimate, note, status) of a curve whose estimate's solve (`what`) failed with
-    `exc`."""
-    return result, None, (f"; no error estimate: {what} failed ({type(exc).__name__}: {exc})"
-                          ), worst_status(result.status, "no_estimate")
+    `exc`; the note ends with `hint` (what to try instead)."""
+    note = f"; no error estimate: {what} failed ({type(exc).__name__}: {exc}){hint}"
+    return result, None, note, worst_status(result.status, "no_estimate")
 
 
 @contextmanager
@@ -412,7 +412,9 @@ def _estimated_by_bem(mu, disc, options, progress, pool):
         try:
             return (result, *_estimate_against_bem(result, bem_job.result()), result.status)
         except Exception as exc:  # the estimate never costs the result: whatever stopped it
-            return _without_estimate(result, exc, "the boundary integral's curve")
+            return _without_estimate(result, exc, "the boundary integral's curve",
+                                     hint="; estimate_by='finer' estimates the FE from its own "
+                                          "finer mesh instead")
 
 
 def _estimate_against_bem(result, partner):
