@@ -63,13 +63,13 @@ def test_a_whole_fe_curve_is_estimated_against_the_whole_bem_curve():
         assert fem.error_estimate[key] == pytest.approx(expected, rel=1e-9), key
 
 
-def test_the_fes_estimate_is_none_if_the_bem_curve_fails_and_stops_with_the_fe(monkeypatch):
+def test_the_fes_estimate_is_none_if_the_bem_curve_fails(monkeypatch):
     """The boundary integral's curve alongside the FE: if it fails, the FE curve is kept
-    without an estimate; if the FE stops (Ctrl-C), the BEM curve ends at its next point
-    (`_Stopped`) instead of running on."""
+    without an estimate, and the message says what to try instead. (If the FE stops, the BEM
+    curve stops too: `test_an_interrupted_curve_stops_its_estimate_solve_too`.)"""
     import fem_asperity.solver.solve as solve
 
-    real, ended = solve._solve_traced, {}
+    real = solve._solve_traced
 
     def failing_bem(mu, disc, **kwargs):
         if disc.method == "bem":
@@ -81,20 +81,6 @@ def test_the_fes_estimate_is_none_if_the_bem_curve_fails_and_stops_with_the_fe(m
     assert result.error_estimate is None and result.status == "no_estimate"
     assert "InputError" in result.message and result.events.jump_in is not None
     assert "estimate_by='finer'" in result.message  # what to do instead
-
-    def interrupted(mu, disc, **kwargs):
-        if disc.method == "fem":
-            raise KeyboardInterrupt
-        try:
-            return real(mu, disc, **kwargs)
-        except BaseException as exc:
-            ended["bem"] = type(exc).__name__
-            raise
-
-    monkeypatch.setattr(solve, "_solve_traced", interrupted)
-    with pytest.raises(KeyboardInterrupt):
-        solve.solve_curve(3.0, accuracy="fine")
-    assert ended == {"bem": "_Stopped"}
 
 
 def test_bem_result_provenance():
@@ -389,16 +375,20 @@ def test_progress_rises_to_one_at_the_end_only(mu, estimate):
     assert max(seen[:-1]) > 0.9  # the retraction moves the bar on before the end
 
 
-def test_an_interrupted_curve_stops_its_estimate_solve_too(monkeypatch):
-    """Ctrl-C (or an error) in a whole curve (`unstable_branch`) ends the estimate's longer
-    whole solve alongside at its next point instead of waiting for it: the estimate's solve
-    ends with `_Stopped`."""
+@pytest.mark.parametrize("options, is_estimates", [
+    (dict(method="bem", unstable_branch=True), lambda disc: disc.name.endswith("/estimate")),
+    (dict(method="fem"), lambda disc: disc.method == "bem"),  # the FE's BEM curve
+])
+def test_an_interrupted_curve_stops_its_estimate_solve_too(monkeypatch, options, is_estimates):
+    """Ctrl-C (or an error) in a curve ends the estimate's longer solve alongside at its next
+    point instead of waiting for it: a whole curve's (`unstable_branch`) whole finer solve, an
+    FE curve's boundary-integral curve. The estimate's solve ends with `_Stopped`."""
     import fem_asperity.solver.solve as solve
 
     real, ended = solve._solve_traced, {}
 
     def interrupted(mu, disc, **kwargs):
-        if not disc.name.endswith("/estimate"):
+        if not is_estimates(disc):
             raise KeyboardInterrupt
         try:
             return real(mu, disc, **kwargs)
@@ -408,5 +398,5 @@ def test_an_interrupted_curve_stops_its_estimate_solve_too(monkeypatch):
 
     monkeypatch.setattr(solve, "_solve_traced", interrupted)
     with pytest.raises(KeyboardInterrupt):
-        solve.solve_curve(3.0, method="bem", accuracy="fine", unstable_branch=True)
+        solve.solve_curve(3.0, accuracy="fine", **options)
     assert ended == {"estimate": "_Stopped"}
