@@ -109,13 +109,16 @@ def test_fold_margin_changes_sign_between_069_and_070(method):
 
 
 def test_out_files_are_all_or_nothing(tmp_path, monkeypatch):
-    """A failure in the last file (the figure) leaves the output folder as it was."""
+    """A failure in the last file (the figure) leaves the output folder as an earlier run left
+    it; a folder holding anything else is refused before a file is written."""
+    from fem_asperity.plumbing.files import RECORD
     from fem_asperity.solver import output
 
     result = solve_curve(0.3, method="bem", accuracy="draft", error_estimate=False)
     target = tmp_path / "out"
-    target.mkdir()
+    output.write_all(result, target)
     (target / "approach.csv").write_text("old")
+    before = sorted(p.name for p in target.iterdir())
 
     def broken(*_args):
         raise OSError("disk full")
@@ -123,14 +126,20 @@ def test_out_files_are_all_or_nothing(tmp_path, monkeypatch):
     monkeypatch.setattr(output, "plot_curve", broken)
     with pytest.raises(OSError):
         output.write_all(result, target)
-    assert [p.name for p in tmp_path.iterdir()] == ["out"]  # no staging folder left
-    assert [p.name for p in target.iterdir()] == ["approach.csv"]
+    assert [p.name for p in tmp_path.iterdir()] == ["out"]
+    assert sorted(p.name for p in target.iterdir()) == before  # no staging folder left
     assert (target / "approach.csv").read_text() == "old"
     monkeypatch.undo()
     names = {p.name for p in output.write_all(result, target)}
     assert names == {"approach.csv", "retraction.csv", "equilibrium.csv", "result.json",
                      "curve.png"}
+    assert sorted(p.name for p in target.iterdir()) == sorted(names | {RECORD})
     assert (target / "approach.csv").read_text().startswith("delta_o/eps,")
+    (tmp_path / "theirs").mkdir()
+    (tmp_path / "theirs" / "approach.csv").write_text("a user's")
+    with pytest.raises(InputError, match="did not write"):
+        output.write_all(result, tmp_path / "theirs")
+    assert (tmp_path / "theirs" / "approach.csv").read_text() == "a user's"
 
 
 def test_tolerance_driven_solve_meets_its_tolerance():

@@ -14,11 +14,11 @@ from dataclasses import asdict
 from pathlib import Path
 
 from fem_asperity.closed_forms.laws import PAPER_LAWS
-from fem_asperity.plumbing.checks import in_range, positive
+from fem_asperity.plumbing.checks import positive
 from fem_asperity.plumbing.cli import Parser, dump_json, run
-from fem_asperity.plumbing.files import save_figure, staged_folder, writable_folder, write_atomic
+from fem_asperity.plumbing.files import output_folder, save_figure, staged_folder, write_atomic
 from fem_asperity.solver.presets import PRESETS
-from fem_asperity.solver.solve import MU_RANGE
+from fem_asperity.solver.solve import solvable_mu
 
 from .closed_forms import closed_form_checks
 from .law_figure import law_table, plot_laws
@@ -224,14 +224,15 @@ def main(argv=None):
 
         return run_bench(as_json=args.json)
     if args.command == "accuracy" and args.mu:
-        in_range("--mu", args.mu, *MU_RANGE, closed_lo=True)
+        solvable_mu(args.mu, "--mu")
     if args.command in ("all", "rough-surface"):
         positive("--compare-mu", args.compare_mu)  # before anything is written
-    writable_folder(args.out, "--out")
+    output_folder(args.out, "--out", PROG)
     command = " ".join([PROG] + (sys.argv[1:] if argv is None else list(argv)))
     # All or nothing as a set: written into a staging folder, moved into --out at the end (each
-    # file or folder of the set replacing its namesake; other entries of --out stay).
-    with staged_folder(args.out, whole=False) as stage:
+    # file or folder of the set replacing its namesake; what the other commands of validation
+    # wrote there stays, and so does what none of them wrote).
+    with staged_folder(args.out, owner=PROG, whole=False) as stage:
         summary = {"out": str(args.out), **_run(args, command, stage)}
     if args.json:
         dump_json(summary)

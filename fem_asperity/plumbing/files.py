@@ -1,6 +1,9 @@
-"""Atomic file output: write to a temporary file beside the target, then rename over it."""
+"""File output that loses nothing: single files written to a temporary file beside the target
+and renamed over it; a command's set of files staged and moved into its output folder only
+whole, replacing only what that command wrote there before (its record says which)."""
 
 import contextlib
+import json
 import os
 import shutil
 import tempfile
@@ -33,61 +36,133 @@ def atomic_path(path):
         raise
 
 
+#: Prefix of the staging folders inside an output folder (and of a folder renamed aside while
+#: it is replaced), so that a later run finds and removes what a killed one left.
+STAGE_PREFIX = ".adhesion-stage-"
+#: The record an output folder keeps of the command that wrote it and of the files it wrote:
+#: a later run of that command replaces those and nothing else.
+RECORD = ".adhesion-output.json"
+
+
 def writable_folder(folder, option):
     """`folder` as a Path if it is, or can be made, a writable folder; else an `InputError` that
-    names `option` and the reason, before any work is done."""
-    folder = Path(folder)
+    names `option` and the reason, before any work is done. Writability is tried (a temporary
+    folder made and removed), not asked of `os.access`, which says yes to root everywhere."""
+    if str(folder).strip() == "":
+        raise InputError(f"{option} needs a folder name; got an empty one")
+    folder = Path(folder).expanduser()
     if folder.exists() and not folder.is_dir():
         raise InputError(f"{option} must be a folder; {folder} is a file")
-    existing = next(p for p in (folder, *folder.parents) if p.exists())
+    existing = next(p for p in (folder, *folder.absolute().parents) if p.exists())
     if not existing.is_dir():
         raise InputError(f"{option}: cannot create {folder}: {existing} is a file")
-    if not os.access(existing, os.W_OK | os.X_OK):
-        raise InputError(f"{option}: {existing} is not writable")
+    try:
+        os.rmdir(tempfile.mkdtemp(dir=existing, prefix=STAGE_PREFIX))
+    except OSError as exc:
+        raise InputError(f"{option}: cannot write in {existing}: {exc.strerror}") from None
     return folder
 
 
-#: Marks the staging folders beside an output folder, so that a later run finds and removes
-#: what a killed one left.
-STAGE_MARK = ".stage-"
+def _ours(folder, owner):
+    """The entries of `folder` that `owner` wrote there (its record's list), or None where the
+    folder holds no record of `owner`."""
+    try:
+        record = json.loads((folder / RECORD).read_text())
+    except (OSError, ValueError):
+        return None
+    if not isinstance(record, dict) or record.get("written_by") != owner:
+        return None
+    return {name for name in record.get("files", ()) if isinstance(name, str) and "/" not in name}
 
 
-def _replace(source, target):
-    """Rename `source` onto `target`; an existing folder `target` is renamed aside first and
-    removed after (a rename cannot replace a folder that has files)."""
+def _entries(folder):
+    """The names in `folder`, staging leftovers left out."""
+    if not folder.is_dir():
+        return set()
+    return {p.name for p in folder.iterdir() if not p.name.startswith(STAGE_PREFIX)}
+
+
+def output_folder(folder, option, owner):
+    """`folder` as a Path if `owner` (a command, e.g. 'python -m fem_asperity curve') may write
+    its output there: a new or empty folder, or one holding its own earlier output (its record);
+    else an `InputError` naming `option`, before any work is done. A folder that holds anything
+    else is refused: the command never deletes what it did not write."""
+    folder = writable_folder(folder, option)
+    foreign = sorted(_entries(folder))
+    if foreign and _ours(folder, owner) is None:
+        shown = ", ".join(foreign[:3]) + (", ..." if len(foreign) > 3 else "")
+        raise InputError(f"{option}: {folder} holds files that {owner} did not write "
+                         f"({shown}); give a new or empty folder, or one it wrote before")
+    return folder
+
+
+def _replace(source, target, folder):
+    """Rename `source` onto `target`; an existing folder `target` is renamed aside (into
+    `folder`, under the staging prefix) first and removed after: a rename cannot replace a
+    folder that has files."""
     if target.is_dir() and not target.is_symlink():
-        aside = Path(tempfile.mkdtemp(dir=target.parent, prefix=f".{target.name}{STAGE_MARK}"))
+        aside = Path(tempfile.mkdtemp(dir=folder, prefix=STAGE_PREFIX)) / target.name
         os.replace(target, aside)
         os.replace(source, target)
-        shutil.rmtree(aside, ignore_errors=True)
+        shutil.rmtree(aside.parent, ignore_errors=True)
     else:
         os.replace(source, target)
 
 
-@contextlib.contextmanager
-def staged_folder(folder, *, whole=True):
-    """Yield a temporary folder beside `folder` to write a set of outputs into; on success the
-    set replaces what was there, on failure (or Ctrl-C) nothing is touched.
+def _remove(path):
+    if path.is_dir() and not path.is_symlink():
+        shutil.rmtree(path)
+    elif path.exists() or path.is_symlink():
+        path.unlink()
 
-    whole=True: `folder` is replaced as a whole, so it never holds a file of an earlier run
-    beside the new ones (a folder owned by one result). whole=False: each file or folder of the
-    set replaces its namesake and other entries of `folder` stay (a shared output folder).
-    Staging folders that a killed run left beside `folder` are removed first."""
-    folder = Path(folder)
-    folder.parent.mkdir(parents=True, exist_ok=True)
-    for leftover in folder.parent.glob(f".{folder.name}{STAGE_MARK}*"):
+
+def _write_record(folder, owner, names):
+    write_atomic(folder / RECORD, json.dumps(
+        {"written_by": owner, "files": sorted(names),
+         "about": "the files the command wrote here; a later run of it replaces only these"},
+        indent=1) + "\n")
+
+
+@contextlib.contextmanager
+def staged_folder(folder, *, owner, whole=True):
+    """Yield a staging folder to write `owner`'s set of outputs into; on success the set is
+    moved into `folder`, on failure (or Ctrl-C) nothing there is touched.
+
+    `folder` must be new, empty or hold `owner`'s earlier output (`output_folder`); entries it
+    did not write stay, and a new file that would replace one of them is refused. whole=True:
+    the files of `owner`'s earlier set that the new set lacks are removed (a folder owned by
+    one result never mixes two runs); whole=False: they stay (commands sharing a folder, each
+    writing part). The record lists every file `owner` wrote at each step of the move, so a
+    run killed during it leaves nothing unrecognised. Staging folders a killed run left in
+    `folder` are removed first."""
+    folder = output_folder(folder, "the output folder", owner)
+    created = not folder.exists()
+    folder.mkdir(parents=True, exist_ok=True)
+    for leftover in folder.glob(f"{STAGE_PREFIX}*"):
         shutil.rmtree(leftover, ignore_errors=True)
-    stage = Path(tempfile.mkdtemp(dir=folder.parent, prefix=f".{folder.name}{STAGE_MARK}"))
-    os.chmod(stage, 0o777 & ~_umask())  # mkdtemp's 0700 would become the output folder's mode
+    stage = Path(tempfile.mkdtemp(dir=folder, prefix=STAGE_PREFIX))
+    os.chmod(stage, 0o777 & ~_umask())  # mkdtemp's 0700 would become a folder's mode
     try:
         yield stage
-        if whole or not folder.exists():
-            _replace(stage, folder)
-        else:
-            for item in stage.iterdir():
-                _replace(item, folder / item.name)
-    finally:
+        earlier = _ours(folder, owner) or set()
+        new = {p.name for p in stage.iterdir()}
+        taken = sorted((new & _entries(folder)) - earlier - {RECORD})
+        if taken:
+            raise InputError(f"{folder}: {', '.join(taken)} would replace files that {owner} "
+                             "did not write; nothing was written")
+        _write_record(folder, owner, earlier | new)  # covers both sets while they are moved
+        for name in sorted(new):
+            _replace(stage / name, folder / name, folder)
+        if whole:
+            for name in earlier - new:
+                _remove(folder / name)
+        _write_record(folder, owner, new if whole else (earlier & _entries(folder)) | new)
+    except BaseException:
         shutil.rmtree(stage, ignore_errors=True)
+        if created and not any(folder.iterdir()):
+            folder.rmdir()
+        raise
+    shutil.rmtree(stage, ignore_errors=True)
 
 
 def write_atomic(path, data):

@@ -15,6 +15,9 @@ from ..closed_forms.lj import scaled_traction
 from ..plumbing.files import atomic_path, save_figure, staged_folder
 from .result import write_curves
 
+#: Who writes a curve's output folder, as its record says (`plumbing.files.staged_folder`).
+OWNER = "python -m fem_asperity curve"
+
 
 def plot_curve(result, path):
     """Two panels, P̄ and ā_c vs δ̄o: equilibrium curve (unstable dashed), approach, retraction."""
@@ -176,9 +179,10 @@ def write_all(result, folder, scales=None):
     """Curves, the curve figure and, for the FE (the BEM has no bulk mesh), the fields at P̄max
     (approach) and P̄off (retraction), the fields in SI with `scales` (physical inputs). All or
     nothing: the files are written into a staging folder and moved into `folder` only when
-    every one of them is complete."""
+    every one of them is complete. `folder` is new, empty or an earlier curve's (`OWNER`); files
+    in it that a curve did not write stay, and a folder holding other files is refused."""
     folder = Path(folder)
-    with staged_folder(folder) as stage:
+    with staged_folder(folder, owner=OWNER) as stage:
         names = [p.name for p in write_curves(result, stage)]
         names.append(plot_curve(result, stage / "curve.png").name)
         if result.spring_constant is not None:
