@@ -17,10 +17,10 @@ from .closed_forms.physical_arguments import (
     scale_record,
 )
 from .closed_forms.scales import si_unit
-from .plumbing.checks import positive
+from .plumbing.checks import in_range, positive
 from .plumbing.cli import Parser, ProgressBar, dump_json, format_cell, print_table, run
 from .plumbing.errors import DerjaguinWarning
-from .plumbing.files import writable_folder
+from .plumbing.files import output_folder
 from .solver.presets import ESTIMATE_BY, METHODS, PRESETS
 
 PROG = "python -m fem_asperity"
@@ -59,8 +59,8 @@ def build_parser():
     curve.add_argument("--method", choices=METHODS, default="fem",
                        help="fem: finite elements; bem: boundary integral (a layer through its "
                             "Hankel-transform kernel), faster (default: %(default)s)")
-    curve.add_argument("--accuracy", choices=tuple(PRESETS), default="default",
-                       help="mesh and step resolution (default: %(default)s)")
+    curve.add_argument("--accuracy", choices=tuple(PRESETS),
+                       help="mesh and step resolution (default: default)")
     curve.add_argument("--tolerance", type=float,
                        help="instead of a preset: refine from draft until P_max and P_off "
                             "change by at most this (relative) between two levels")
@@ -83,7 +83,7 @@ def build_parser():
                             "control)")
     curve.add_argument("--no-error-estimate", action="store_true",
                        help="skip the error estimate (faster)")
-    curve.add_argument("--estimate-by", choices=ESTIMATE_BY, default="auto",
+    curve.add_argument("--estimate-by", choices=ESTIMATE_BY,
                        help="how the error estimate is made: 'finer', the events solved again "
                             "on a finer discretisation near each; 'bem', the FE of a "
                             "homogeneous half-space against the boundary integral's curve plus "
@@ -114,7 +114,7 @@ def build_parser():
                        help="resolution of each curve (default: %(default)s)")
     sweep.add_argument("--no-error-estimate", action="store_true",
                        help="skip each curve's error estimate (faster)")
-    sweep.add_argument("--estimate-by", choices=ESTIMATE_BY, default="auto",
+    sweep.add_argument("--estimate-by", choices=ESTIMATE_BY,
                        help="how each curve's error estimate is made (as for curve)")
     sweep.add_argument("--jobs", type=int, help="worker processes (default: one per core)")
     sweep.add_argument("--scheduler", metavar="ADDRESS",
@@ -172,21 +172,27 @@ def _scales(args, parser):
 
 def _curve(args, parser):
     from .plumbing.errors import ContinuationError
-    from .solver.output import write_all
-    from .solver.solve import solve_curve, solve_to_tolerance
+    from .solver.output import OWNER, write_all
+    from .solver.solve import SOFT_SPRING, SPRING_RANGE, solve_curve, solve_to_tolerance
 
     mu, scales, radius_ratio = _curve_inputs(args, parser)
     if args.out is not None:
-        writable_folder(args.out, "--out")  # before solving
+        output_folder(args.out, "--out", OWNER)  # before solving
     if args.spring_constant is not None and args.tolerance is not None:
         parser.error("curve: --spring-constant takes a preset (--accuracy), not --tolerance")
-    if args.estimate_by != "auto" and args.tolerance is not None:
-        parser.error("curve: --tolerance estimates by the change between its levels; "
-                     "--estimate-by takes a preset (--accuracy)")
+    if args.tolerance is not None and (args.estimate_by or args.accuracy
+                                       or args.no_error_estimate):
+        parser.error("curve: --tolerance refines until the change between its levels (its "
+                     "estimate) meets it; --accuracy, --estimate-by and --no-error-estimate "
+                     "go with a preset instead")
+    _estimate_options(args, parser, "curve")
     solid = _solid(args, parser, scales)
     spring = args.spring_constant
-    if spring is not None and scales is not None:  # N/m → 2πRΔγ/ε
-        spring = positive("--spring-constant", spring, unit="N/m") * scales.eps / scales.force
+    if spring is not None:  # with physical inputs N/m → 2πRΔγ/ε, the range said in N/m
+        per = scales.eps / scales.force if scales is not None else 1.0
+        lo, hi = (k / per for k in SPRING_RANGE)
+        spring = in_range("--spring-constant", spring, lo, hi, closed_lo=True,
+                          unit="N/m" if scales is not None else "", why=SOFT_SPRING) * per
     bar = ProgressBar(f"{args.method.upper()} curve mu={mu:g}")
     try:
         if args.tolerance is not None:
@@ -194,8 +200,8 @@ def _curve(args, parser):
                                         radius_ratio=radius_ratio,
                                         unstable_branch=args.unstable_branch, progress=bar)
         else:
-            result = solve_curve(mu, method=args.method, accuracy=args.accuracy, solid=solid,
-                                 radius_ratio=radius_ratio,
+            result = solve_curve(mu, method=args.method, accuracy=args.accuracy or "default",
+                                 solid=solid, radius_ratio=radius_ratio,
                                  error_estimate=not args.no_error_estimate,
                                  estimate_by=args.estimate_by,
                                  unstable_branch=args.unstable_branch, spring_constant=spring,
@@ -206,7 +212,7 @@ def _curve(args, parser):
     bar.close()
     if result.status != "ok":
         print(f"warning: {result.message}", file=sys.stderr)
-    if args.out:
+    if args.out is not None:
         write_all(result, args.out, scales=scales)
     row = result.records()
     if scales is not None:
@@ -254,7 +260,7 @@ def _solid(args, parser, scales):
     """The `Solid` of `curve`: the layer's thickness in √(Rε) (converted from m with physical
     inputs), its modulus ratio (given, or from --layer-E and --layer-nu against the substrate's
     E*) and the Poisson's ratios."""
-    from .solids.fe import Solid
+    from .solids.fe import LAYER_THICKNESS, Solid
 
     layered = (args.layer_modulus_ratio, args.layer_nu, args.layer_E)
     if args.layer_thickness is None and any(v is not None for v in layered):
@@ -275,10 +281,20 @@ def _solid(args, parser, scales):
                          "--layer-modulus-ratio")
         layer_e_star = positive("--layer-E", args.layer_E, unit="Pa") / (1.0 - layer_nu**2)
         ratio = layer_e_star / scales.E_star
-    if thickness is not None and scales is not None:  # m → √(Rε)
-        thickness = positive("--layer-thickness", thickness, unit="m") / scales.length_r
+    if thickness is not None and scales is not None:  # m → √(Rε), its range said in m
+        lo, hi = (bound * scales.length_r for bound in LAYER_THICKNESS)
+        thickness = in_range("--layer-thickness", thickness, lo, hi, closed_lo=True,
+                             unit=f"m ({LAYER_THICKNESS[0]:g}-{LAYER_THICKNESS[1]:g} sqrt(R eps))") / scales.length_r
     return Solid(nu=nu, layer_thickness=thickness,
                  layer_modulus_ratio=1.0 if ratio is None else ratio, layer_nu=layer_nu)
+
+
+def _estimate_options(args, parser, command):
+    """--estimate-by only with the estimate, 'auto' where not given."""
+    if args.no_error_estimate and args.estimate_by is not None:
+        parser.error(f"{command}: --estimate-by says how the error estimate is made; "
+                     "--no-error-estimate skips it")
+    args.estimate_by = args.estimate_by or "auto"
 
 
 def _si_text(key, value):
@@ -288,12 +304,13 @@ def _si_text(key, value):
 
 def _sweep(args, parser):
     from .studies.store import mu_key
-    from .studies.sweep import mu_range, sweep
+    from .studies.sweep import OWNER, mu_range, sweep
 
     if (args.mu is None and args.mu_range is None) != physical_given(args):
         parser.error(f"sweep: give one of --mu, --mu-range or the physical inputs ({USAGE})")
     scales = physical_scales(args, parser.error, "sweep", several=True)
-    out = writable_folder(args.out, "--out")  # before solving
+    _estimate_options(args, parser, "sweep")
+    out = output_folder(args.out, "--out", OWNER)  # before solving
     mus = ([s.mu for s in scales] if scales else
            mu_range(*args.mu_range) if args.mu_range else args.mu)
     if scales and len({mu_key(mu) for mu in mus}) < len(mus):

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from fem_asperity import __version__
+from fem_asperity.plumbing.files import RECORD
 
 
 def cli(*args, cwd=None, env=None):
@@ -90,7 +91,7 @@ def test_validation_all_writes_its_files(tmp_path):
     assert done.returncode == 0, done.stderr
     summary = json.loads(done.stdout)
     assert sorted(p.name for p in out.iterdir()) == [
-        "law_comparison.png", "layered", "paper_laws.json", "paper_laws.png", "report.md",
+        RECORD, "law_comparison.png", "layered", "paper_laws.json", "paper_laws.png", "report.md",
         "rough_surface.json", "rough_surface.md", "rough_surface.png", "single_asperity"]
     assert sorted(p.name for p in (out / "layered").iterdir()) == [
         "layered.json", "map.png", "report.md"]
@@ -179,7 +180,7 @@ def test_curve_json_files_and_progress(tmp_path):
     names = {p.name for p in out.iterdir()}
     assert {"approach.csv", "retraction.csv", "equilibrium.csv", "result.json", "curve.png",
             "fields_p_max.vtu", "fields_p_max.png", "fields_p_off.vtu"} <= names
-    assert not [n for n in names if n.startswith(".")]  # no temporary files left
+    assert not [n for n in names if n.startswith(".") and n != RECORD]  # no temporary files
     header = (out / "approach.csv").read_text().splitlines()[0]
     assert header == ("delta_o/eps,x_o/eps,p/(2 pi R dgamma),area/(eps R),a_c/sqrt(eps R),"
                       "stable,branch")
@@ -200,6 +201,14 @@ def test_curve_json_files_and_progress(tmp_path):
     ["curve", "--mu", "1e-300"], ["curve", "--mu", "1", "--layer-thickness", "1e-300"],
     ["curve", "--mu", "1", "--layer-thickness", "1", "--layer-modulus-ratio", "1e300"],
     ["onset", "--bracket", "0.3", "0.5"], ["onset", "--bracket", "1", "0.3"],
+    ["onset", "--bracket", "1e-300", "1"], ["onset", "--bracket", "0.3", "1e300"],
+    ["curve", "--mu", "50.5"], ["sweep", "--out", "x", "--mu", "1", "60"],
+    ["curve", "--mu", "1", "--spring-constant", "1e-300"],
+    # options that would be accepted and ignored
+    ["curve", "--mu", "1", "--accuracy", "fine", "--tolerance", "1e-3"],
+    ["curve", "--mu", "1", "--no-error-estimate", "--tolerance", "1e-3"],
+    ["curve", "--mu", "1", "--no-error-estimate", "--estimate-by", "finer"],
+    ["sweep", "--out", "x", "--mu", "1", "--no-error-estimate", "--estimate-by", "finer"],
     # physical inputs: both ways at once, one missing, alternatives mixed, out of range
     ["curve", "--mu", "1", "--E-star", "1e11", "--dgamma", "0.05", "--eps", "3e-10", "--R",
      "1e-6"],
@@ -375,7 +384,7 @@ def test_curve_bem_json_and_files(tmp_path):
     assert events["estimated_by"] == "finer"
     assert events["p_off"] == pytest.approx(-0.83533, abs=5e-5)  # FE: -0.83532
     assert events["dofs"] == events["surface_nodes"]
-    assert {p.name for p in out.iterdir()} == {"approach.csv", "retraction.csv",
+    assert {p.name for p in out.iterdir()} == {"approach.csv", "retraction.csv", RECORD,
                                                 "equilibrium.csv", "result.json", "curve.png"}
     rows = (out / "equilibrium.csv").read_text().splitlines()[1:]
     assert any(row.split(",")[5] == "0" for row in rows)  # the unstable branch is in it
@@ -414,3 +423,79 @@ def test_a_curve_the_solver_cannot_follow_is_one_line_exit_1(capsys):
     assert run(main, "prog", []) == 1
     err = capsys.readouterr().err
     assert err == "prog: error: no stable state at δ = 75.7754\n"
+
+
+SI = ["--E-star", "1e11", "--dgamma", "0.05", "--eps", "3e-10", "--R", "1e-6"]
+
+
+def _project(folder):
+    """A folder of a user's own files: what --out must never delete."""
+    (folder / "src").mkdir(parents=True)
+    (folder / "src" / "model.py").write_text("x = 1\n")
+    (folder / "notes.txt").write_text("my notes\n")
+
+
+@pytest.mark.parametrize("command", [
+    ["curve", "--mu", "1", "--method", "bem", "--accuracy", "draft"],
+    ["sweep", "--mu", "1", "--method", "bem", "--accuracy", "draft"],
+])
+@pytest.mark.parametrize("where", ["project", "validation", "home", "cwd"])
+def test_out_never_deletes_a_users_files(tmp_path, command, where):
+    """A folder holding files the command did not write (a project, the validation report, a
+    home folder, the current folder) is refused before solving, in one line naming --out, and
+    left as it was."""
+    from fem_asperity.plumbing.files import staged_folder
+
+    folder = tmp_path / "work"
+    if where == "validation":  # what `validation all --out out/` left there
+        with staged_folder(folder, owner="python -m validation", whole=False) as stage:
+            (stage / "report.md").write_text("the report\n")
+            (stage / "single_asperity").mkdir()
+    else:
+        _project(folder)
+    before = sorted(str(p.relative_to(folder)) for p in folder.rglob("*"))
+    out = {"home": "~", "cwd": "."}.get(where, str(folder))
+    done = cli("fem_asperity", *command, "--out", out, cwd=folder,
+               env={"HOME": str(folder), "ADHESION_CACHE": str(tmp_path / "cache")})
+    assert done.returncode == 2, done.stderr
+    (line,) = done.stderr.strip().splitlines()
+    assert "--out" in line and "did not write" in line and "mu=1" not in line  # not solved
+    assert sorted(str(p.relative_to(folder)) for p in folder.rglob("*")) == before
+
+
+@pytest.mark.parametrize("out, says", [("/proc/x", "cannot write in /proc"),
+                                       ("", "--out needs a folder name")])
+def test_out_that_cannot_be_written_is_refused_before_solving(out, says):
+    done = cli("fem_asperity", "curve", "--mu", "1", "--method", "bem", "--out", out)
+    assert done.returncode == 2 and says in done.stderr, done.stderr
+    assert "curve mu=1" not in done.stderr
+
+
+def test_out_dot_writes_into_the_current_folder_and_replaces_its_own_files(tmp_path):
+    args = ("fem_asperity", "curve", "--mu", "0.3", "--method", "bem", "--accuracy", "draft",
+            "--no-error-estimate", "--out", ".")
+    assert cli(*args, cwd=tmp_path).returncode == 0
+    (tmp_path / "mine.txt").write_text("added after\n")
+    done = cli(*args, "--spring-constant", "5", cwd=tmp_path)  # a set with cantilever.png
+    assert done.returncode == 0, done.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted([
+        RECORD, "approach.csv", "cantilever.png", "curve.png", "equilibrium.csv", "mine.txt",
+        "result.json", "retraction.csv"])
+    assert (tmp_path / "mine.txt").read_text() == "added after\n"
+
+
+@pytest.mark.parametrize("args, says", [
+    (["--mu", "100"], "mu must be at most 50 for a solved curve; got 100: above it the "
+                      "cohesive zone is too narrow"),
+    (["--mu", "1", "--spring-constant", "1e-6"], "--spring-constant must be in [1e-05, 1e+12); "
+                                                 "got 1e-06: a spring that soft"),
+    (SI + ["--spring-constant", "1e-300"], "--spring-constant must be in [0.010472, 1.0472e+15) N/m"),
+    (SI + ["--layer-thickness", "1e-300"], "--layer-thickness must be in [1.73205e-10, "
+                                           "1.73205e-05) m"),
+])
+def test_a_range_is_refused_in_the_users_units_and_says_why(args, says):
+    """Beyond what the solver serves within minutes (μ = 50; k̄ = 1e-5, i.e. 1e-5 · 2πRΔγ/ε =
+    0.010472 N/m at R = 1 µm, Δγ = 0.05 J/m², ε = 0.3 nm), and a layer thickness given in m
+    bounded in m (0.01-1000 √(Rε) = 1.73205e-10-1.73205e-5 m)."""
+    done = cli("fem_asperity", "curve", *args)
+    assert done.returncode == 2 and says in done.stderr, done.stderr

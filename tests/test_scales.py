@@ -1,6 +1,7 @@
 """Inputs and scales: E*, the Tabor parameter (eq. 1), its inverse, and input checks."""
 
 import math
+import re
 import warnings
 
 import numpy as np
@@ -114,6 +115,24 @@ def test_inverse_needs_exactly_one_of_modulus_or_energy():
         Scales.for_mu(1.0, eps=EPS, R=R, E_star=1e9, dgamma=DGAMMA)
     with pytest.raises(InputError, match="mu"):
         Scales.for_mu(-1.0, eps=EPS, R=R, E_star=1e9)
+
+
+@pytest.mark.parametrize("mu, given, needed", [(1e300, "E_star", "dgamma = inf"),
+                                                (1e-300, "dgamma", "E_star = inf"),
+                                                (1e6, "E_star", "dgamma = 5.2e+06")])
+def test_an_extreme_mu_is_refused_by_the_input_it_would_need(mu, given, needed):
+    """Δγ/E* = μ^1.5 √(ε³/R): at E* = 1e9 Pa, ε = 0.3 nm, R = 1 µm, μ = 1e6 needs
+    Δγ = 1e9 · 1e9 · √(2.7e-29/1e-6) = 5.2e6 J/m², beyond the supported 1e3."""
+    inputs = {"E_star": 1e9, "dgamma": DGAMMA}
+    says = re.escape(f"mu = {mu:g} with these inputs needs {needed}")
+    with pytest.raises(InputError, match=says):
+        Scales.for_mu(mu, eps=0.3e-9, R=1e-6, **{given: inputs[given]})
+
+
+@pytest.mark.parametrize("bad", [None, True, "1", [1.0, None]])
+def test_what_is_no_number_is_refused_even_where_numpy_would_cast_it(bad):
+    with pytest.raises(InputError, match="mu must be a real number"):
+        Scales.for_mu(bad, eps=EPS, R=R, E_star=1e9)
 
 
 def test_error_names_offending_array_entry():

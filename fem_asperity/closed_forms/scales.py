@@ -82,13 +82,19 @@ class Scales:
         """
         mu = positive("mu", mu)
         eps, R = _within("eps", eps, LENGTH_RANGE, "m"), _within("R", R, LENGTH_RANGE, "m")
-        ratio = mu**1.5 * np.sqrt(eps**3 / R)  # Δγ / E*
         if (E_star is None) == (dgamma is None):
             raise InputError("give exactly one of E_star or dgamma; the other is chosen for mu")
-        if E_star is None:
-            E_star = _within("dgamma", dgamma, ADHESION_RANGE, "J/m^2") / ratio
-        else:
-            dgamma = _within("E_star", E_star, MODULUS_RANGE, "Pa") * ratio
+        with np.errstate(over="ignore", divide="ignore"):  # refused below, by what it needs
+            ratio = np.float64(mu) ** 1.5 * np.sqrt(eps**3 / R)  # Δγ / E*
+            if E_star is None:
+                E_star = _within("dgamma", dgamma, ADHESION_RANGE, "J/m^2") / ratio
+                needed, value, bounds, unit = "E_star", E_star, MODULUS_RANGE, "Pa"
+            else:
+                dgamma = _within("E_star", E_star, MODULUS_RANGE, "Pa") * ratio
+                needed, value, bounds, unit = "dgamma", dgamma, ADHESION_RANGE, "J/m^2"
+        if not bounds[0] <= value < bounds[1]:
+            raise InputError(f"mu = {mu:g} with these inputs needs {needed} = {value:.3g} "
+                             f"{unit}, outside the supported [{bounds[0]:g}, {bounds[1]:g}) {unit}")
         return cls(E_star=E_star, dgamma=dgamma, eps=eps, R=R)
 
     @property

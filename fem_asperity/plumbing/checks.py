@@ -16,15 +16,19 @@ def _scalar_or_array(arr):
     return float(arr) if arr.ndim == 0 else arr
 
 
-def in_range(name, value, lo=-np.inf, hi=np.inf, *, closed_lo=False, unit=""):
+def in_range(name, value, lo=-np.inf, hi=np.inf, *, closed_lo=False, unit="", why=""):
     """Return `value` as float (or float array) if every entry lies in (lo, hi), else raise.
 
     `closed_lo` admits `lo` itself. The upper end is always open, so +inf and NaN never pass.
+    `why`: the reason for the range, appended to the error.
     """
     try:
+        kind = np.asarray(value).dtype.kind
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        raise InputError(f"{name} must be a real number; got {value!r}") from None
+        kind = None
+    if kind not in ("i", "u", "f"):  # None, True or "1" are no numbers, though numpy casts them
+        raise InputError(f"{name} must be a real number; got {value!r}")
     with np.errstate(invalid="ignore"):
         ok = np.isfinite(arr) & (arr < hi) & ((arr >= lo) if closed_lo else (arr > lo))
     if not ok.all():
@@ -33,7 +37,8 @@ def in_range(name, value, lo=-np.inf, hi=np.inf, *, closed_lo=False, unit=""):
             allowed = "finite"
         else:
             allowed = f"in {'[' if closed_lo else '('}{lo:g}, {hi:g}){' ' + unit if unit else ''}"
-        raise InputError(f"{name} must be {allowed}; got {float(bad)!r}")
+        raise InputError(f"{name} must be {allowed}; got {float(bad)!r}"
+                         + (f": {why}" if why else ""))
     return _scalar_or_array(arr)
 
 

@@ -44,14 +44,27 @@ PATH_BLAS_THREADS = 1
 #: up to REFINEMENTS times (test_bem_curve).
 MU_ONSET_HI, REFINEMENTS = 0.6982, 2
 
-#: Tabor parameters a curve is solved for: from the rigid limit (μ = 1e-3 solves with both
-#: methods; 1e-300 overflowed) to where the edge-following grids end; test_cli's bad-input test
-#: pins the lower end.
-MU_RANGE = (1e-3, 1e4)
+#: Tabor parameters a curve is solved for, both ends included: from the rigid limit (μ = 1e-3
+#: solves with both methods; 1e-300 overflowed) to the largest μ whose curve finishes at
+#: `draft` within minutes on two cores (benchmarks/large_mu.py --large times μ = 50; μ = 100
+#: ran past four minutes at 60 %: the cohesive zone narrows like μ^-1.5 and its grids grow);
+#: above it JKR answers (TOO_STIFF). test_cli's bad-input test pins both ends.
+MU_RANGE = (1e-3, 50.0)
+#: Why a μ above MU_RANGE is refused, and what answers there.
+TOO_STIFF = ("above it the cohesive zone is too narrow for a solve to finish within minutes; "
+             "JKR's closed forms answer there (its pull-off -0.75 is within 0.1 % of the "
+             "solved one at mu = 50): python -m fem_asperity laws, "
+             "fem_asperity.closed_forms.reference")
 
-#: Stiffest spring taken (2πRΔγ/ε): beyond it the control is displacement control to round-off
-#: (z̄ − δ̄o = −P̄/k̄ below 1e-12 ε). Not pinned by a test.
-SPRING_MAX = 1e12
+#: Springs taken (2πRΔγ/ε), the softest included. Stiffer than 1e12, the control is
+#: displacement control to round-off (z̄ − δ̄o = −P̄/k̄ below 1e-12 ε). The curve must start
+#: 1/k̄ ε out (SOFT_SPRING) and its cost grows like 1/k̄: softer than 1e-5 (a 0.01 N/m
+#: cantilever on a 1 µm sphere) it would take more than minutes (benchmarks/soft_spring.py).
+#: test_cli pins the soft end.
+SPRING_RANGE = (1e-5, 1e12)
+#: Why a softer spring is refused.
+SOFT_SPRING = ("a spring that soft lets the sphere land up to 1/k eps from the surface after "
+               "the pull-off, and the curve traced out to there costs like 1/k")
 #: Progress shown until a solve and its error estimate have both ended.
 ALMOST_DONE = 0.99
 #: The estimated forces: on grids that follow the edge their estimate adds the curve's
@@ -265,7 +278,8 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     if radius_ratio is not None:
         in_range("radius_ratio", radius_ratio, 10.0, np.inf, closed_lo=True)
     if spring_constant is not None:
-        in_range("spring_constant", spring_constant, 0.0, SPRING_MAX)
+        in_range("spring_constant", spring_constant, *SPRING_RANGE, closed_lo=True,
+                 why=SOFT_SPRING)
     by = estimate_kind(estimate_by, method, solid)
     options = dict(solid=solid, radius_ratio=radius_ratio, unstable_branch=unstable_branch,
                    spring_constant=spring_constant)
@@ -499,7 +513,17 @@ def _mu(mu):
     if np.ndim(mu) != 0:
         raise InputError(f"mu must be one number (a curve per call; `studies.sweep` solves "
                          f"many); got an array of shape {np.shape(mu)}")
-    return in_range("mu", mu, *MU_RANGE, closed_lo=True)
+    return solvable_mu(mu)
+
+
+def solvable_mu(mu, name="mu"):
+    """`mu` (a number or an array) if every entry lies in MU_RANGE, ends included, else an
+    `InputError` naming `name` and, above the range, why."""
+    mu = in_range(name, mu, MU_RANGE[0], np.inf, closed_lo=True)
+    if np.any(np.asarray(mu) > MU_RANGE[1]):
+        raise InputError(f"{name} must be at most {MU_RANGE[1]:g} for a solved curve; got "
+                         f"{float(np.max(mu)):g}: {TOO_STIFF}")
+    return mu
 
 
 #: Events a tolerance-driven solve converges (relative change between levels).

@@ -25,7 +25,7 @@ from ..path.curve import parabola_vertex
 from ..plumbing.errors import InputError
 from ..plumbing.revision import code_revision
 from ..solver.presets import discretisation
-from ..solver.solve import PATH_BLAS_THREADS
+from ..solver.solve import PATH_BLAS_THREADS, solvable_mu
 from .store import cache_dir, stored_json
 
 
@@ -74,9 +74,9 @@ def jump_in_onset(*, method="bem", accuracy="default", bracket=(0.2, 1.0), xtol=
         calls.append(mu)
         return fold_margin(mu, method=method, accuracy=accuracy)
 
-    lo, hi = bracket
-    if not 0.0 < lo < hi:
-        raise InputError(f"bracket must satisfy 0 < lo < hi; got {bracket}")
+    lo, hi = (solvable_mu(mu, "bracket") for mu in bracket)
+    if not lo < hi:
+        raise InputError(f"bracket must satisfy lo < hi; got {tuple(bracket)}")
     m_lo, m_hi = margin(lo), margin(hi)
     if m_lo * m_hi > 0.0:
         raise InputError(f"no change of the fold margin in [{lo}, {hi}]: {m_lo:.3g}, {m_hi:.3g}")

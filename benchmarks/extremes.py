@@ -1,0 +1,54 @@
+"""Benchmark: the cost at the ends of the ranges a curve is solved for (issue 43), the evidence
+for `solver.solve.MU_RANGE` (the stiffest contact, μ = 50) and `SPRING_RANGE` (the softest
+spring, whose curve starts 1/k̄ ε out).
+
+    python benchmarks/extremes.py           # minutes → benchmarks/results/extremes.{md,json}
+    python benchmarks/extremes.py --quick   # k̄ = 1e-3 only, seconds
+"""
+
+import argparse
+import sys
+import time
+
+from fem_asperity.plumbing.cli import ProgressBar
+from fem_asperity.solver.solve import solve_curve
+from provenance import add_output_options, provenance, write_results
+
+#: (label, μ, method, accuracy, error estimate, spring k̄ or None): μ = 50 at `draft` with both
+#: methods as a user runs it (with the estimate), and the spring from k̄ = 1e-3 to the softest
+#: taken (BEM draft, μ = 1, no estimate: the cost of tracing out to 1/k̄).
+RUNS = (("FE draft, mu = 50, with estimate", 50.0, "fem", "draft", True, None),
+        ("BEM draft, mu = 50, with estimate", 50.0, "bem", "draft", True, None),
+        ("BEM draft, mu = 1, k = 1e-3", 1.0, "bem", "draft", False, 1e-3),
+        ("BEM draft, mu = 1, k = 1e-4", 1.0, "bem", "draft", False, 1e-4),
+        ("BEM draft, mu = 1, k = 1e-5", 1.0, "bem", "draft", False, 1e-5))
+QUICK_RUNS = RUNS[2:3]
+
+
+def one(label, mu, method, accuracy, estimate, spring):
+    start = time.perf_counter()
+    result = solve_curve(mu, method=method, accuracy=accuracy, error_estimate=estimate,
+                         spring_constant=spring, progress=ProgressBar(label))
+    wall = time.perf_counter() - start
+    return {"run": label, "wall_s": wall, "status": result.status, "points": result.points,
+            "newton_iterations": result.newton_iterations, "p_off": result.events.p_off}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    add_output_options(parser)
+    args = parser.parse_args()
+    prov = provenance()
+    rows = [one(*run) for run in (QUICK_RUNS if args.quick else RUNS)]
+    lines = ["One run each, wall time as a user sees it (two cores).", "",
+             "| run | wall s | status | points | Newton iterations | P̄off |",
+             "|---|---|---|---|---|---|"]
+    lines += [f"| {r['run']} | {r['wall_s']:.1f} | {r['status']} | {r['points']} | "
+              f"{r['newton_iterations']} | {r['p_off']:.6f} |" for r in rows]
+    paths = write_results("extremes", "The cost at the ends of the solved ranges", prov, lines,
+                          {"rows": rows}, out=args.out, quick=args.quick)
+    print("wrote " + ", ".join(map(str, paths)), file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
