@@ -19,9 +19,10 @@ from fem_asperity.closed_forms.physical_arguments import (
 from fem_asperity.plumbing.checks import in_range
 from fem_asperity.plumbing.cli import Parser, ProgressBar, dump_json, print_table, run
 from fem_asperity.solver.presets import PRESETS
+from fem_asperity.solver.solve import solvable_mu
 from fem_asperity.studies.refit import stored_refit
 
-from .integrate import separation_range, strength, totals
+from .integrate import D_MAX, check_stiffness, separation_range, strength, totals
 from .laws import PaperLaw
 from .surface import RoughSurface, omega_mccool
 from .tables import solved_law
@@ -29,6 +30,11 @@ from .tables import solved_law
 PROG = "python -m gw"
 #: --compare warns where the paper's law is off the solved law by more than this fraction of F̄max.
 COMPARE_WARNING = 0.1
+#: Most d values of `curve`: 10^4 take 0.5 s and 0.2 GB (10^5: 4 s and 1.3 GB; memory grows as
+#: 220 x points per piece), and are far more than a plot needs.
+POINTS_MAX = 10_000
+#: Laws solved at --mu (a curve of that solver), which takes mu in solver.solve.MU_RANGE only.
+SOLVED = ("fem", "bem")
 
 
 def _common(parser):
@@ -47,8 +53,9 @@ def _common(parser):
                              "constants refitted from BEM curves (stored); fem, bem: the approach "
                              "curve of that solver at this mu, solved once and stored "
                              "(default: paper)")
-    parser.add_argument("--accuracy", choices=tuple(PRESETS), default="default",
-                        help="resolution of a solved law (default: %(default)s)")
+    parser.add_argument("--accuracy", choices=tuple(PRESETS),
+                        help="resolution of the solved curves behind --law refit, fem, bem and "
+                             "fmax --compare (default: default)")
     parser.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
 
@@ -61,14 +68,16 @@ def build_parser():
                       help="the paper's law, the refitted law and the solved law (of --law fem "
                            "or bem; default bem) side by side, with their relative differences "
                            "and the solved law's interpolation error")
-    fmax.add_argument("--warn-above", type=float, default=COMPARE_WARNING,
+    fmax.add_argument("--warn-above", type=float,
                       help="--compare warns where the paper's F_max is off the solved law's by "
-                           "more than this fraction (default: %(default)s)")
+                           f"more than this fraction (default: {COMPARE_WARNING})")
     curve = commands.add_parser("curve", help="F and S against the mean separation d / sigma")
     _common(curve)
     curve.add_argument("--d", type=float, nargs=2, metavar=("MIN", "MAX"),
-                       help="range of d / sigma (default: around the law's breakpoints)")
-    curve.add_argument("--points", type=int, default=101, help="number of d values (101)")
+                       help=f"range of d / sigma, MIN < MAX, both within +-{D_MAX:g} "
+                            "(default: around the law's breakpoints)")
+    curve.add_argument("--points", type=int, default=101,
+                       help=f"number of d values, 2 to {POINTS_MAX} (default: %(default)s)")
     return parser
 
 
@@ -92,14 +101,43 @@ def _inputs(args, parser):
     return args.mu, RoughSurface(zeta=args.zeta, omega=1.0 if omega is None else omega), None
 
 
+def _check(args, parser, mu, surface):
+    """Refuse every bad input up front, before a refit or a solved curve (minutes) is computed:
+    mu in the closed forms' range, and in solver.solve.MU_RANGE for a solved law; zeta/mu and 1/mu below
+    RATIO_MAX; each option used by the command and --law given (one usage line otherwise);
+    --warn-above > 0; --points in [2, POINTS_MAX]; --d finite, within +-D_MAX, MIN < MAX."""
+    compare = args.command == "fmax" and args.compare
+    check_stiffness(PaperLaw(mu), surface)
+    if args.law in SOLVED or compare:
+        solvable_mu(mu, "mu of a solved law (--law fem|bem, fmax --compare)")
+    if args.accuracy is not None and args.law == "paper" and not compare:
+        parser.error(f"{args.command}: --accuracy applies to --law refit|fem|bem and fmax "
+                     "--compare (the paper's law is closed-form: nothing to resolve)")
+    if args.command == "fmax":
+        if args.warn_above is not None and not compare:
+            parser.error("fmax: --warn-above needs --compare")
+        if compare and args.law == "refit":
+            parser.error("fmax --compare: --law chooses the solved law's method (fem or bem)")
+        if args.warn_above is not None:
+            in_range("--warn-above", args.warn_above, 0.0, np.inf)
+        return
+    if not 2 <= args.points <= POINTS_MAX:
+        parser.error(f"curve: --points must be from 2 to {POINTS_MAX}; got {args.points}")
+    if args.d is not None:
+        lo, hi = in_range("--d", args.d, -D_MAX, D_MAX)
+        if not lo < hi:
+            parser.error(f"curve: --d MIN MAX needs MIN < MAX; got {lo:g} {hi:g}")
+
+
 def _law(args, mu):
     if args.law == "paper":
         return PaperLaw(mu)
+    accuracy = args.accuracy or "default"
     if args.law == "refit":
-        fit = stored_refit(accuracy=args.accuracy, announce=partial(print, file=sys.stderr))
+        fit = stored_refit(accuracy=accuracy, announce=partial(print, file=sys.stderr))
         return PaperLaw(mu, fit.laws, name="refit")
     bar = ProgressBar(f"{args.law.upper()} curve mu={mu:g} (stored for next time)")
-    law = solved_law(mu, method=args.law, accuracy=args.accuracy, progress=bar)
+    law = solved_law(mu, method=args.law, accuracy=accuracy, progress=bar)
     if bar.shown >= 0:  # solved now, not read from the store
         bar.close()
     return law
@@ -114,18 +152,17 @@ def _si(scales, args, d, force, area=None):
     return si
 
 
-def _compare(args, parser, mu, surface, scales):
+def _compare(args, mu, surface, scales):
     """`fmax --compare`: F̄max and its d̃ from the paper's law, the refitted law and the solved law,
     their differences relative to the solved one, and a warning where the paper's is off by more
     than --warn-above."""
-    if args.law == "refit":
-        parser.error("fmax --compare: --law chooses the solved law's method (fem or bem)")
-    threshold = in_range("--warn-above", args.warn_above, 0.0, np.inf)
-    method = args.law if args.law in ("fem", "bem") else "bem"
-    laws = {"paper": PaperLaw(mu),
-            "refit": _law(_with_law(args, "refit"), mu),
-            "solved": _law(_with_law(args, method), mu)}
-    found = {name: strength(law, surface) for name, law in laws.items()}
+    threshold = COMPARE_WARNING if args.warn_above is None else args.warn_above
+    method = args.law if args.law in SOLVED else "bem"
+    laws = {"paper": PaperLaw(mu)}
+    found = {"paper": strength(laws["paper"], surface)}  # its refusals before the long work
+    laws |= {"refit": _law(_with_law(args, "refit"), mu),
+             "solved": _law(_with_law(args, method), mu)}
+    found |= {name: strength(laws[name], surface) for name in ("refit", "solved")}
     solved = found["solved"].f_max
     rows = {name: {"f_max": s.f_max, "d_at_max": s.d_at_max,
                    "relative_to_solved": (s.f_max - solved) / solved}
@@ -166,10 +203,9 @@ def main(argv=None):
     parser = build_parser()
     args = parser.parse_args(argv)
     mu, surface, scales = _inputs(args, parser)
-    if args.command == "fmax" and args.warn_above != COMPARE_WARNING and not args.compare:
-        parser.error("fmax: --warn-above needs --compare")
+    _check(args, parser, mu, surface)
     if args.command == "fmax" and args.compare:
-        return _compare(args, parser, mu, surface, scales)
+        return _compare(args, mu, surface, scales)
     law = _law(args, mu)
     head = {"mu": mu, "zeta": surface.zeta, "omega": surface.omega, "law": args.law}
     if args.command == "fmax":
@@ -186,8 +222,6 @@ def main(argv=None):
             print_table([{"quantity": k, "value": v} for k, v in (row | si).items()
                          if k != "si"], ("quantity", "value"))
         return 0
-    if args.points < 2:
-        parser.error("curve: --points must be at least 2")
     lo, hi = separation_range(law, surface) if args.d is None else args.d
     d = np.linspace(lo, hi, args.points)
     force, area = totals(law, surface, d)

@@ -72,7 +72,7 @@ def totals(law, surface, d):
     """(F̄, S̄) at the mean separations `d` (d̃, in σ; array or scalar) for `law` on `surface`."""
     d = np.atleast_1d(in_range("d", d, -D_MAX, D_MAX)).astype(float)
     zeta, omega = surface.zeta, surface.omega
-    _check_stiffness(law, surface)
+    check_stiffness(law, surface)
     contact = d - min(law.breakpoints or (1.0,)) / zeta  # z̃c
     lo, hi = zeta * (d - height_top(contact, omega)), zeta * (d + WINDOW / omega)  # δ̄o range
     cuts = [lo, *(np.clip(b, lo, hi) for b in law.breakpoints), hi]
@@ -95,8 +95,8 @@ def height_top(contact, omega):
     return np.maximum(WINDOW, np.sqrt(above**2 + 2.0 * TAIL)) / omega
 
 
-def _check_stiffness(law, surface):
-    """Refuse ζ/μ or 1/μ beyond RATIO_MAX."""
+def check_stiffness(law, surface):
+    """Refuse ζ/μ or 1/μ beyond RATIO_MAX (`law.mu`; `surface.zeta`, ζ = σ/ε): `InputError`."""
     if not max(surface.zeta, 1.0) / law.mu < RATIO_MAX:
         raise InputError(
             f"zeta/mu and 1/mu must be < {RATIO_MAX:g} for the GW integrals (the asperities' "
@@ -133,7 +133,7 @@ def strength(law, surface, *, samples=48):
     """
     if samples < 3:
         raise InputError(f"samples must be at least 3; got {samples!r}")
-    _check_stiffness(law, surface)
+    check_stiffness(law, surface)
     lo, hi = separation_range(law, surface)
     _check_grid(lo, hi, law, surface)
     grid = np.linspace(lo, hi, samples)

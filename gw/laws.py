@@ -1,8 +1,10 @@
 """Single-asperity laws for the GW integrator: P̄(δ̄o) and Ā(δ̄o) on approach, with breakpoints.
 
 A law is any object with `mu`, `name`, `breakpoints` (the δ̄o, in ε, where force or area has a
-kink or a jump: δ̄oc, δ̄o*, the jump-in) and vectorised `force(delta)`, `area(delta)` defined for
-every real δ̄o (negative = the asperity presses into the half-space). Two kinds:
+kink or a jump: δ̄oc, δ̄o*, the jump-in) and vectorised `force(delta)` (P̄, in 2πRΔγ, < 0 tensile),
+`area(delta)` (Ā, in εR) defined for every finite δ̄o in ε (negative = the asperity presses into
+the half-space). Both laws here refuse a non-finite δ̄o, as `fem_asperity.closed_forms.laws`
+does, and a force or area beyond the float range, with `InputError`. Two kinds:
 
 - `PaperLaw`: the paper's closed forms (eqs. 2, 7, 9-19) with its constants or refitted ones;
 - `TabulatedLaw`: the approach path of an FE or boundary-integral curve at the same μ, jump
@@ -15,7 +17,25 @@ from scipy.interpolate import PchipInterpolator
 
 from fem_asperity.closed_forms.laws import PAPER_LAWS
 from fem_asperity.closed_forms.lj import bradley_force
-from fem_asperity.plumbing.checks import positive
+from fem_asperity.plumbing.checks import finite_result, in_range, positive
+
+
+def _delta(delta):
+    """δ̄o [ε] as the closed forms take it: finite, else `InputError` naming delta_o."""
+    return np.asarray(in_range("delta_o", delta))
+
+
+def _checked(law, delta, what):
+    """`law(δ̄o)` at the checked δ̄o `delta` [ε]; `InputError` saying `what` overflowed where the
+    result leaves the float range (the closed forms refuse the force so)."""
+    with np.errstate(over="ignore"):
+        return finite_result(law(_delta(delta)), what)
+
+
+#: What leaves the float range at a very deep δ̄o (−δ̄o beyond about 1e206 μ for the force, 5e307
+#: for the area).
+FORCE = "the force (the Hertz compression (δ̄oc − δ̄o)/μ raised to 3/2)"
+AREA = "the area π(δ̄o* − δ̄o)"
 
 
 class PaperLaw:
@@ -24,10 +44,17 @@ class PaperLaw:
 
     def __init__(self, mu, constants=PAPER_LAWS, *, name="paper"):
         self.mu, self.constants, self.name = positive("mu", mu), constants, name
-        at_mu = constants.at(mu)
-        self.force, self.area = at_mu.force, at_mu.area
+        self._at_mu = constants.at(mu)  # constants evaluated once: the GW integrals call often
         self.breakpoints = tuple(sorted({float(constants.delta_oc(mu)),
                                          float(constants.delta_o_star(mu))}))
+
+    def force(self, delta):
+        """P̄(δ̄o) [2πRΔγ] on approach at δ̄o `delta` [ε] (array or scalar)."""
+        return _checked(self._at_mu.force, delta, FORCE)
+
+    def area(self, delta):
+        """Ā(δ̄o) [εR] on approach at δ̄o `delta` [ε] (array or scalar)."""
+        return _checked(self._at_mu.area, delta, AREA)
 
 
 class TabulatedLaw:
@@ -83,6 +110,10 @@ class TabulatedLaw:
         return out, delta
 
     def force(self, delta):
+        """P̄(δ̄o) [2πRΔγ] on approach at δ̄o `delta` [ε] (array or scalar)."""
+        return _checked(self._force, delta, FORCE)
+
+    def _force(self, delta):
         out, delta = self._piecewise(delta, "p")
         above, below = delta > self._first, delta < self._last
         out[above] = bradley_force(delta[above])
@@ -92,6 +123,10 @@ class TabulatedLaw:
         return out
 
     def area(self, delta):
+        """Ā(δ̄o) [εR] on approach at δ̄o `delta` [ε] (array or scalar)."""
+        return _checked(self._area, delta, AREA)
+
+    def _area(self, delta):
         out, delta = self._piecewise(delta, "area")
         below = delta < self._last
         out[below] = self._area_last + np.pi * (self._last - delta[below])

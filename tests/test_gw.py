@@ -131,12 +131,18 @@ def test_strength_at_the_ends_of_the_supported_range_is_positive_and_interior(mu
     assert np.all(np.isfinite(force))
 
 
+def bradley_law(delta):
+    """A `TabulatedLaw` at μ = 0.1 through Bradley's rigid force at `delta`, zero area."""
+    force, area = bradley_force(delta), np.zeros_like(delta)
+    approach = curve_from_columns(delta, delta, force, area, area, np.ones(delta.size, bool),
+                                  np.zeros(delta.size, int))
+    return TabulatedLaw(0.1, approach)
+
+
 def test_tabulated_law_reproduces_its_samples_and_extends():
     delta = 1.0 + 39.0 * np.linspace(1.0, 0.0, 200) ** 2  # dense where P̄ is steep
-    force, area = bradley_force(delta), np.zeros_like(delta)
-    approach = curve_from_columns(delta, delta, force, area, area, np.ones(200, bool),
-                                  np.zeros(200, int))
-    law = TabulatedLaw(0.1, approach)
+    force = bradley_force(delta)
+    law = bradley_law(delta)
     np.testing.assert_allclose(law.force(delta), force, rtol=1e-12)
     assert law.force(np.array([60.0]))[0] == pytest.approx(bradley_force(60.0))
     deep = law.force(np.array([0.9, 0.5]))
@@ -144,6 +150,30 @@ def test_tabulated_law_reproduces_its_samples_and_extends():
     mid = 0.5 * (delta[1:] + delta[:-1])
     true_error = np.abs(law.force(mid) - bradley_force(mid)).max()
     assert true_error <= law.interpolation_error < 1e-3
+
+
+@pytest.mark.parametrize("law", [PaperLaw(1.0), PaperLaw(0.3, name="continuous"),
+                                 bradley_law(np.linspace(40.0, 1.0, 50))],
+                         ids=["paper", "paper-continuous", "tabulated"])
+@pytest.mark.parametrize("method", ["force", "area"])
+@pytest.mark.parametrize("delta", [np.nan, np.inf, -np.inf, [2.0, np.nan], [[1.0], [-np.inf]]])
+def test_laws_refuse_a_non_finite_separation_as_the_closed_forms_do(law, method, delta):
+    """PaperLaw(1).force([nan]) returned [nan]; PAPER_LAWS refuses it naming delta_o."""
+    with pytest.raises(InputError, match="delta_o must be finite"):
+        PAPER_LAWS.force(delta, mu=1.0) if method == "force" else PAPER_LAWS.area(delta, mu=1.0)
+    with pytest.raises(InputError, match="delta_o must be finite"):
+        getattr(law, method)(delta)
+
+
+@pytest.mark.parametrize("law", [PaperLaw(1e-3), bradley_law(np.linspace(40.0, 1.0, 50))],
+                         ids=["paper", "tabulated"])
+@pytest.mark.parametrize("method, deep", [("force", -1e300), ("area", -1.7e308)])
+def test_laws_refuse_a_result_beyond_the_float_range(law, method, deep):
+    """δ̄o = −1e300 at μ = 1e-3: Hertz's ((δ̄oc − δ̄o)/μ)^(3/2) ≈ 1e454 was inf (with an overflow
+    warning), as was π(δ̄o* − δ̄o) at −1.7e308; a finite δ̄o well inside gives a finite value."""
+    with pytest.raises(InputError, match="beyond the float range"):
+        getattr(law, method)(np.array([1.0, deep]))
+    assert np.all(np.isfinite(getattr(law, method)(np.array([1.0, -1e100]))))
 
 
 def test_surface_inputs():
@@ -257,7 +287,7 @@ def test_compare_puts_the_three_laws_side_by_side_and_warns(capsys, tmp_path, mo
 
     monkeypatch.setenv("ADHESION_CACHE", str(tmp_path))
     base = ["fmax", "--mu", "1", "--zeta", "3", "--accuracy", "draft", "--json"]
-    assert main(base) == 0
+    assert main(["fmax", "--mu", "1", "--zeta", "3", "--json"]) == 0  # no --accuracy: refused
     plain = json.loads(capsys.readouterr().out)
     assert main(base + ["--compare"]) == 0
     out = capsys.readouterr()
@@ -282,3 +312,74 @@ def test_compare_options_are_used_or_refused(args):
     done = gw_cli(*args)
     assert done.returncode == 2
     assert len(done.stderr.strip().splitlines()) == 1, done.stderr
+
+
+def run_gw(capsys, args):
+    """`python -m gw ARGS` in this process: (exit code, stdout, stderr lines)."""
+    from fem_asperity.plumbing.cli import run
+    from gw.__main__ import PROG, main
+
+    try:
+        code = run(main, PROG, args)
+    except SystemExit as exc:  # argparse's usage errors
+        code = exc.code
+    out, err = capsys.readouterr()
+    return code, out, err.strip().splitlines()
+
+
+@pytest.fixture
+def no_work(monkeypatch):
+    """The refit, the solved curves (minutes) and `curve`'s integrals fail the test if they start:
+    bad input must be refused before them (a paper's-law F_max, milliseconds, may come first)."""
+    import gw.__main__
+
+    def work(*_args, **_kwargs):
+        raise AssertionError("work started before the input was checked")
+
+    for name in ("stored_refit", "solved_law", "totals", "separation_range"):
+        monkeypatch.setattr(gw.__main__, name, work)
+
+
+@pytest.mark.parametrize("args, names", [
+    # 1e8 points: a 164 GiB allocation after 65 s.
+    (["curve", "--mu", "1", "--zeta", "2", "--points", "100000000"], ("--points", "2 to 10000")),
+    (["curve", "--mu", "1", "--zeta", "1", "--law", "bem", "--points", "1"], ("--points",)),
+    # inf: reported as d = nan with two numpy warnings; nan, 1e307: named "d", not "--d".
+    (["curve", "--mu", "1", "--zeta", "2", "--d", "inf", "1"], ("--d", "1e+06")),
+    (["curve", "--mu", "1", "--zeta", "2", "--d", "nan", "1"], ("--d",)),
+    (["curve", "--mu", "1", "--zeta", "2", "--d", "0", "1e307", "--law", "bem"], ("--d",)),
+    # MIN >= MAX: accepted, the table printed from 5 down to 1 (or three times d = 1).
+    (["curve", "--mu", "1", "--zeta", "2", "--d", "5", "1"], ("--d", "MIN < MAX")),
+    (["curve", "--mu", "1", "--zeta", "2", "--d", "1", "1"], ("--d", "MIN < MAX")),
+    # refitted for 66 s before the 1/mu check refused.
+    (["fmax", "--mu", "1e-300", "--zeta", "1", "--compare"], ("1/mu", "1e+50")),
+    (["fmax", "--mu", "1", "--zeta", "1e300", "--law", "bem"], ("zeta/mu", "1e+50")),
+    # below the solvers' range: refused only after the refit.
+    (["fmax", "--mu", "1e-5", "--zeta", "1", "--compare"], ("mu of a solved law", "[0.001,")),
+    (["fmax", "--mu", "2e4", "--zeta", "1", "--law", "fem"], ("mu of a solved law",)),
+    # the paper's F_max cannot be searched: refused only after the refit and the solved curve.
+    (["fmax", "--mu", "1", "--zeta", "1e-300", "--compare"], ("d/sigma",)),
+    (["fmax", "--mu", "1", "--zeta", "1", "--compare", "--warn-above", "0"], ("--warn-above",)),
+    (["fmax", "--mu", "1", "--zeta", "1", "--compare", "--law", "refit"], ("--law",)),
+    # accepted and ignored: --accuracy with the paper's law, --warn-above (its default value)
+    # without --compare.
+    (["fmax", "--mu", "1", "--zeta", "2", "--accuracy", "fine"], ("--accuracy", "refit|fem|bem")),
+    (["curve", "--mu", "1", "--zeta", "2", "--accuracy", "draft"], ("--accuracy",)),
+    (["fmax", "--mu", "1", "--zeta", "2", "--warn-above", "0.1"], ("--warn-above", "--compare")),
+])
+def test_cli_refuses_bad_input_in_one_line_before_any_work(capsys, no_work, args, names):
+    code, out, err = run_gw(capsys, args)
+    assert code == 2 and out == "" and len(err) == 1, err
+    assert err[0].startswith("python -m gw: error: ") and all(n in err[0] for n in names), err
+
+
+def test_cli_curve_takes_the_most_points_and_a_range(capsys):
+    """--points POINTS_MAX and --d MIN MAX are served: that many d from MIN to MAX."""
+    from gw.__main__ import POINTS_MAX
+
+    code, out, err = run_gw(capsys, ["curve", "--mu", "1", "--zeta", "2", "--d", "-1", "3",
+                                     "--points", str(POINTS_MAX), "--json"])
+    assert code == 0 and err == [], err
+    out = json.loads(out)
+    assert len(out["d"]) == POINTS_MAX and out["d"][0] == -1.0 and out["d"][-1] == 3.0
+    assert POINTS_MAX == 10_000  # the bound named in the refusal above
