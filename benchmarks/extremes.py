@@ -10,9 +10,10 @@ import argparse
 import sys
 import time
 
+from provenance import add_output_options, provenance, write_results
+
 from fem_asperity.plumbing.cli import ProgressBar
 from fem_asperity.solver.solve import solve_curve
-from provenance import add_output_options, provenance, write_results
 
 #: (label, μ, method, accuracy, error estimate, spring k̄ or None): μ = 50 at `draft` with both
 #: methods as a user runs it (with the estimate), and the spring from k̄ = 1e-3 to the softest

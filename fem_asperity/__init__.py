@@ -12,10 +12,14 @@ store, sweeps, refit); see docs/ARCHITECTURE.md.
 
 from importlib import import_module
 
-from .closed_forms.laws import PAPER_LAWS, AsperityLaws, LawEvents
-from .closed_forms.scales import Scales, effective_modulus, tabor_parameter
-from .plumbing.errors import ContinuationError, DerjaguinWarning, InputError
-from .plumbing.version import __version__ as __version__
+from .plumbing.interrupt import quiet_while_loading
+
+quiet_while_loading()  # before numpy and scipy load: the slow part of a command's start
+
+from .closed_forms.laws import PAPER_LAWS, AsperityLaws, LawEvents  # noqa: E402
+from .closed_forms.scales import Scales, effective_modulus, tabor_parameter  # noqa: E402
+from .plumbing.errors import ContinuationError, DerjaguinWarning, InputError  # noqa: E402
+from .plumbing.version import __version__ as __version__  # noqa: E402
 
 #: Names loaded on first use, and the module each comes from.
 _LAZY = {

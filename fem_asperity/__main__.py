@@ -283,8 +283,9 @@ def _solid(args, parser, scales):
         ratio = layer_e_star / scales.E_star
     if thickness is not None and scales is not None:  # m → √(Rε), its range said in m
         lo, hi = (bound * scales.length_r for bound in LAYER_THICKNESS)
+        unit = f"m ({LAYER_THICKNESS[0]:g}-{LAYER_THICKNESS[1]:g} sqrt(R eps))"
         thickness = in_range("--layer-thickness", thickness, lo, hi, closed_lo=True,
-                             unit=f"m ({LAYER_THICKNESS[0]:g}-{LAYER_THICKNESS[1]:g} sqrt(R eps))") / scales.length_r
+                             unit=unit) / scales.length_r
     return Solid(nu=nu, layer_thickness=thickness,
                  layer_modulus_ratio=1.0 if ratio is None else ratio, layer_nu=layer_nu)
 

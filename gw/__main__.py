@@ -103,9 +103,10 @@ def _inputs(args, parser):
 
 def _check(args, parser, mu, surface):
     """Refuse every bad input up front, before a refit or a solved curve (minutes) is computed:
-    mu in the closed forms' range, and in solver.solve.MU_RANGE for a solved law; zeta/mu and 1/mu below
-    RATIO_MAX; each option used by the command and --law given (one usage line otherwise);
-    --warn-above > 0; --points in [2, POINTS_MAX]; --d finite, within +-D_MAX, MIN < MAX."""
+    mu in the closed forms' range, and in solver.solve.MU_RANGE for a solved law; zeta/mu and
+    1/mu below RATIO_MAX; each option used by the command and --law given (one usage line
+    otherwise); --warn-above > 0; --points in [2, POINTS_MAX]; --d finite, within +-D_MAX,
+    MIN < MAX."""
     compare = args.command == "fmax" and args.compare
     check_stiffness(PaperLaw(mu), surface)
     if args.law in SOLVED or compare:

@@ -489,7 +489,8 @@ def test_out_dot_writes_into_the_current_folder_and_replaces_its_own_files(tmp_p
                       "cohesive zone is too narrow"),
     (["--mu", "1", "--spring-constant", "1e-6"], "--spring-constant must be in [1e-05, 1e+12); "
                                                  "got 1e-06: a spring that soft"),
-    (SI + ["--spring-constant", "1e-300"], "--spring-constant must be in [0.010472, 1.0472e+15) N/m"),
+    (SI + ["--spring-constant", "1e-300"], "--spring-constant must be in [0.010472, "
+                                           "1.0472e+15) N/m"),
     (SI + ["--layer-thickness", "1e-300"], "--layer-thickness must be in [1.73205e-10, "
                                            "1.73205e-05) m"),
 ])
@@ -499,3 +500,20 @@ def test_a_range_is_refused_in_the_users_units_and_says_why(args, says):
     bounded in m (0.01-1000 √(Rε) = 1.73205e-10-1.73205e-5 m)."""
     done = cli("fem_asperity", "curve", *args)
     assert done.returncode == 2 and says in done.stderr, done.stderr
+
+
+@pytest.mark.parametrize("package, args", [("fem_asperity", ["laws", "--mu", "1"]),
+                                           ("gw", ["fmax", "--mu", "1", "--zeta", "1"])])
+def test_ctrl_c_while_the_modules_load_ends_in_one_line(package, args):
+    """Whenever the Ctrl-C comes, from the first tenth of a second on, the user sees one line
+    at most (numpy and scipy load in the first half second), never a traceback."""
+    import signal
+    import time
+
+    for delay in (0.05, 0.15, 0.3):
+        run = subprocess.Popen([sys.executable, "-m", package, *args], stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+        time.sleep(delay)
+        run.send_signal(signal.SIGINT)
+        _, err = run.communicate(timeout=60)
+        assert "Traceback" not in err and len(err.splitlines()) <= 1, (delay, err)
