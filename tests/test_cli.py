@@ -204,6 +204,7 @@ def test_curve_json_files_and_progress(tmp_path):
     ["onset", "--bracket", "1e-300", "1"], ["onset", "--bracket", "0.3", "1e300"],
     ["curve", "--mu", "50.5"], ["sweep", "--out", "x", "--mu", "1", "60"],
     ["curve", "--mu", "1", "--spring-constant", "1e-300"],
+    ["curve", "--mu", "7", "--unstable-branch"], ["curve", "--mu", "7", "--spring-constant", "1"],
     # options that would be accepted and ignored
     ["curve", "--mu", "1", "--accuracy", "fine", "--tolerance", "1e-3"],
     ["curve", "--mu", "1", "--no-error-estimate", "--tolerance", "1e-3"],

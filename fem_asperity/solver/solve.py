@@ -65,6 +65,11 @@ SPRING_RANGE = (1e-5, 1e12)
 #: Why a softer spring is refused.
 SOFT_SPRING = ("a spring that soft lets the sphere land up to 1/k eps from the surface after "
                "the pull-off, and the curve traced out to there costs like 1/k")
+#: Largest μ whose whole curve (the unstable branches, or a spring's load-line control) is
+#: traced: on one uniform grid, which must resolve the cohesive zone everywhere, its cost
+#: climbs steeply with μ (BEM draft: μ = 7 ran past four minutes; benchmarks/extremes.py
+#: times μ = 5 and 6). test_cli's bad-input test pins it.
+WHOLE_CURVE_MU_MAX = 6.0
 #: Progress shown until a solve and its error estimate have both ended.
 ALMOST_DONE = 0.99
 #: The estimated forces: on grids that follow the edge their estimate adds the curve's
@@ -280,6 +285,7 @@ def solve_curve(mu, *, method="fem", accuracy="default", solid=Solid(), radius_r
     if spring_constant is not None:
         in_range("spring_constant", spring_constant, *SPRING_RANGE, closed_lo=True,
                  why=SOFT_SPRING)
+    _whole_curve_served(mu, unstable_branch or spring_constant is not None)
     by = estimate_kind(estimate_by, method, solid)
     options = dict(solid=solid, radius_ratio=radius_ratio, unstable_branch=unstable_branch,
                    spring_constant=spring_constant)
@@ -516,6 +522,16 @@ def _mu(mu):
     return solvable_mu(mu)
 
 
+def _whole_curve_served(mu, whole):
+    """Refuse a `whole` curve (unstable_branch or spring_constant) above WHOLE_CURVE_MU_MAX."""
+    if whole and mu > WHOLE_CURVE_MU_MAX:
+        raise InputError(f"the unstable branch (--unstable-branch) and a spring "
+                         f"(--spring-constant) need mu <= {WHOLE_CURVE_MU_MAX:g}; got mu = "
+                         f"{mu:g}: the whole curve is traced on one uniform grid, which "
+                         "must resolve the cohesive zone everywhere, and above that it takes "
+                         "more than minutes")
+
+
 def solvable_mu(mu, name="mu"):
     """`mu` (a number or an array) if every entry lies in MU_RANGE, ends included, else an
     `InputError` naming `name` and, above the range, why."""
@@ -538,6 +554,7 @@ def solve_to_tolerance(mu, tolerance, *, method="fem", solid=Solid(), radius_rat
     is returned with a message saying so. Arguments otherwise as `solve_curve`."""
     mu = _mu(mu)
     tolerance = in_range("tolerance", tolerance, 0.0, 0.1)
+    _whole_curve_served(mu, unstable_branch)
     options = dict(solid=solid, radius_ratio=radius_ratio, unstable_branch=unstable_branch,
                    spring_constant=None)
     disc = _discretisation(mu, "draft", method=method, p_end=p_end, options=options)
