@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from fem_asperity.path.curve import parabola_vertex
+from fem_asperity.path.curve import JUMP_CONTACT, Curve, _initial_contact, parabola_vertex
 
 
 def test_parabola_vertex_of_a_parabola_is_exact():
@@ -19,3 +19,29 @@ def test_parabola_vertex_of_nearly_straight_samples_stays_within_them():
     y = np.array([0.0, -1.0, -2.0 + 1e-9])
     s, value = parabola_vertex(t, y)
     assert s == 2.0 and value == pytest.approx(y[2], abs=1e-12)
+
+
+def _approach(delta, x, branch):
+    n = len(delta)
+    return Curve(delta=np.array(delta, float), x=np.array(x, float), p=np.zeros(n),
+                 area=np.zeros(n), a_c=np.zeros(n), stable=np.ones(n, bool),
+                 branch=np.array(branch))
+
+
+@pytest.mark.parametrize("x_after, expected", [
+    (0.98, 1.5),          # lands inside: the jump forms the contact (μ ≤ 20)
+    (1.00059, 1.5),       # lands at the equilibrium spacing (μ = 50): the jump forms it too
+    (1.05, -0.5 - 0.5 * 0.04 / 0.05),  # lands short of it: the centre gap crosses 1 later
+])
+def test_a_jump_that_lands_at_the_equilibrium_spacing_forms_the_contact(x_after, expected):
+    """δ̄o* is the jump's δ̄o where the jump lands within JUMP_CONTACT of x̄o = 1, else where x̄o,
+    linear between samples, reaches 1 (here from 1.04 at δ̄o = -0.5 to 0.99 at -1: -0.9)."""
+    assert JUMP_CONTACT == 0.01
+    approach = _approach([3.0, 2.0, 1.5, 1.5, -0.5, -1.0], [3.0, 2.0, 1.5, x_after, 1.04, 0.99],
+                         [0, 0, 0, 1, 1, 1])
+    found = _initial_contact(approach)
+    assert found == pytest.approx(expected, abs=1e-12)
+
+
+def test_without_a_jump_or_a_touch_there_is_no_initial_contact():
+    assert _initial_contact(_approach([3.0, 2.0], [3.0, 2.0], [0, 0])) is None

@@ -129,13 +129,25 @@ def _most_tensile(path):
     return float(path.p[i]), float(path.delta[i]), float(path.a_c[i])
 
 
+#: A jump that lands with the centre gap within this of ε (x̄o ≤ 1 + JUMP_CONTACT) forms the
+#: contact: the LJ traction there is below 8 % of its tensile peak, the surfaces at their
+#: equilibrium spacing. Above μ ≈ 20 the centre lands just above 1 and its traction turns
+#: compressive only deep in the indentation (μ = 50, BEM draft: x̄o = 1.00059 after the jump,
+#: 1 at δ̄o = −84.8), a δ̄o that an error of 1e-6 in x̄o would move by 0.14: no number to
+#: report. test_curve.py::test_a_jump_that_lands_at_the_equilibrium_spacing_forms_the_contact.
+JUMP_CONTACT = 0.01
+
+
 def _initial_contact(path):
     """δ̄o where the centre gap first reaches 1 on the approach path (x̄o linear in δ̄o between
-    samples), or the jump's δ̄o if contact forms by the jump; None if it never forms."""
+    samples), or the jump's δ̄o if contact forms by the jump (it lands with x̄o ≤ 1 +
+    JUMP_CONTACT); None if it never forms."""
+    landings = np.nonzero(np.diff(path.branch) != 0)[0] + 1
     touching = np.nonzero(path.x <= 1.0)[0]
-    if touching.size == 0:
+    landed = [k for k in landings if path.x[k] <= 1.0 + JUMP_CONTACT]
+    if touching.size == 0 and not landed:
         return None
-    k = int(touching[0])
+    k = int(min([*touching[:1], *landed[:1]]))
     if k == 0:
         return float(path.delta[0])
     if path.branch[k] != path.branch[k - 1]:
