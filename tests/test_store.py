@@ -1,8 +1,45 @@
 """The store of solved curves: solved once per solver revision, then read back."""
 
+import os
+import re
+import shutil
+import subprocess
+import tempfile
+import threading
+import time
+
 import pytest
 
 import fem_asperity.studies.store as store
+from fem_asperity.plumbing.errors import InputError
+from fem_asperity.studies.sweep import sweep
+
+FAST = dict(method="bem", accuracy="draft", error_estimate=False)
+
+
+@pytest.fixture
+def read_only():
+    """make(folder): `folder` and all in it read-only for the rest of the test, root included:
+    chmod a-w and, as root (whom chmod does not stop), the immutable attribute (chattr +i)."""
+    made = []
+
+    def make(folder):
+        made.append(folder)
+        subprocess.run(["chmod", "-R", "a-w", folder], check=True)
+        if os.geteuid() == 0 and (not shutil.which("chattr") or subprocess.run(
+                ["chattr", "-R", "+i", folder], capture_output=True).returncode):
+            pytest.skip("as root only chattr +i makes a folder read-only, and it failed here")
+        try:
+            os.rmdir(tempfile.mkdtemp(dir=folder))
+        except OSError:
+            return
+        pytest.skip(f"could not make {folder} read-only")
+
+    yield make
+    for folder in made:
+        if os.geteuid() == 0 and shutil.which("chattr"):
+            subprocess.run(["chattr", "-R", "-i", folder], capture_output=True)
+        subprocess.run(["chmod", "-R", "u+w", folder], check=True)
 
 
 def test_a_changed_solver_solves_afresh(tmp_path, monkeypatch):
@@ -120,3 +157,86 @@ def test_each_kind_of_estimate_is_stored_apart_and_auto_shares_its_kinds_folder(
     with pytest.raises(InputError, match="homogeneous half-space"):
         sweep([1.0], method="bem", estimate_by="bem", cache=tmp_path)
     assert not any(tmp_path.iterdir())
+
+
+def test_a_refused_curve_leaves_no_file(tmp_path):
+    """Every input is checked before the store makes a file (a lock) or a folder."""
+    for mu, bad in ((1.0, dict(method="bogus")), (1.0, dict(accuracy="bogus")), (0.0, {}),
+                    (1e3, {})):
+        with pytest.raises(InputError):
+            store.stored_curve(mu, **{**FAST, **bad}, cache=tmp_path / "store")
+        with pytest.raises(InputError):
+            sweep([mu], **{**FAST, **bad}, cache=tmp_path / "store")
+    assert not (tmp_path / "store").exists()
+
+
+def test_a_lock_is_never_held_twice_and_leaves_no_file(tmp_path):
+    """A released lock's file is removed while another process (a thread here: flock keeps two
+    opens of one file apart as it keeps two processes) waits on it: the waiter wakes on a
+    removed file and must take the lock again, else a newcomer would hold it at once too."""
+    folder = tmp_path / "entry"
+    first = store.lock_entry(folder)
+    waiter_holds, let_go = threading.Event(), threading.Event()
+
+    def waiter():
+        lock = store.lock_entry(folder)
+        waiter_holds.set()
+        let_go.wait(30)
+        store.unlock_entry(lock)
+
+    thread = threading.Thread(target=waiter)
+    thread.start()
+    time.sleep(0.2)  # the waiter now waits on the file that `first` locks
+    store.unlock_entry(first)
+    try:
+        assert waiter_holds.wait(30)
+        assert store.lock_entry(folder, wait=False) is None  # a newcomer finds it held
+    finally:
+        let_go.set()
+        thread.join()
+    assert not any(tmp_path.iterdir())
+    store.unlock_entry(store.lock_entry(folder, wait=False))
+    assert not any(tmp_path.iterdir())
+
+
+def test_a_read_only_store_holding_every_mu_serves_a_sweep(tmp_path, read_only):
+    """A sweep that needs to write nothing reads a read-only store; one that must solve is
+    refused before it solves, naming the store's setting."""
+    cache = tmp_path / "store"
+    first = [store.stored_curve(mu, **FAST, cache=cache) for mu in (0.5, 1.0)]
+    read_only(cache)
+    again = sweep([0.5, 1.0], **FAST, cache=cache, jobs=1)
+    assert again.stored == 2 and again.solved == 0
+    assert [row.curve.events for row in again.rows] == [curve.events for curve in first]
+    with pytest.raises(InputError, match=r"\$ADHESION_CACHE"):
+        sweep([0.5, 1.0, 2.0], **FAST, cache=cache, jobs=1)
+
+
+def test_a_store_that_is_a_file_is_refused_naming_adhesion_cache(tmp_path, monkeypatch):
+    import fem_asperity.studies.onset as onset
+
+    monkeypatch.setattr(onset, "jump_in_onset", lambda **_: pytest.fail("computed the onset"))
+    blocker = tmp_path / "file"
+    blocker.write_text("not a folder")
+    named = rf"\$ADHESION_CACHE.*{re.escape(str(blocker))} is a file"
+    for setting in (blocker, blocker / "store"):
+        monkeypatch.setenv("ADHESION_CACHE", str(setting))
+        with pytest.raises(InputError, match=named):
+            store.stored_curve(1.0, **FAST)
+        with pytest.raises(InputError, match=named):
+            sweep([1.0], **FAST)
+        with pytest.raises(InputError, match=named):
+            onset.stored_onset(method="bem", accuracy="draft")
+    assert blocker.read_text() == "not a folder"
+
+
+def test_a_corrupt_entry_in_a_read_only_store_is_refused_naming_it(tmp_path, read_only):
+    cache = tmp_path / "store"
+    folder = store.stored_curve(0.3, **FAST, cache=cache).folder
+    (folder / "manifest.json").write_text("{not json")
+    read_only(cache)
+    named = rf"\$ADHESION_CACHE.*{re.escape(str(folder))} is corrupt"
+    with pytest.raises(InputError, match=named):
+        store.stored_curve(0.3, **FAST, cache=cache)
+    with pytest.raises(InputError, match=named):
+        sweep([0.3], **FAST, cache=cache)

@@ -7,12 +7,16 @@ import os
 import signal
 import subprocess
 import sys
+import threading
 import time
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
 
 import pytest
 
 import fem_asperity.studies.sweep as sweep_module
 from fem_asperity import solve_curve
+from fem_asperity.__main__ import main
 from fem_asperity.plumbing.errors import InputError
 from fem_asperity.studies.sweep import mu_range, solve_for_sweep, sweep
 
@@ -163,7 +167,8 @@ def test_to_dataframe(swept):
 
 def test_mu_range_is_log_spaced_and_checked():
     assert mu_range(0.1, 10, 3) == pytest.approx([0.1, 1.0, 10.0])
-    for bad in ((1, 0.1, 3), (0.1, 1, 1), (0, 1, 3), (0.1, 1, 2.5)):
+    for bad in ((1, 0.1, 3), (0.1, 1, 1), (0, 1, 3), (0.1, 1, 2.5), (0.1, 1, float("nan")),
+                (0.1, 1, float("inf")), (0.1, 1, 1e300), (0.1, 1, None)):
         with pytest.raises(InputError):
             mu_range(*bad)
     with pytest.raises(InputError):
@@ -177,3 +182,100 @@ def test_an_unwritable_store_is_refused_before_any_solve(tmp_path):
     blocker.write_text("not a folder")
     with pytest.raises(InputError, match="ADHESION_CACHE"):
         sweep([1.0], cache=blocker / "store", **FAST)
+
+
+def test_the_command_line_refuses_a_bad_n_or_scheduler_naming_the_option(tmp_path, monkeypatch):
+    """Each refused in one line (an `InputError`, exit code 2), before the store is touched."""
+    monkeypatch.setenv("ADHESION_CACHE", str(tmp_path / "store"))
+    out = ["--out", str(tmp_path / "out")]
+    for n in ("nan", "inf", "1e300"):
+        with pytest.raises(InputError, match="--mu-range"):
+            main(["sweep", "--mu-range", "1", "2", n, *out])
+    for address in ("bogus", "tcp://host", "tcp://host:port", "bogus://host:8786", ""):
+        with pytest.raises(InputError, match="--scheduler"):
+            main(["sweep", "--mu", "1", "--scheduler", address, *out])
+    with pytest.raises(InputError, match="jobs"):
+        sweep([1.0], jobs=float("nan"), **FAST)
+    assert not (tmp_path / "store").exists() and not (tmp_path / "out").exists()
+    pytest.importorskip("dask.distributed")
+    for address in ("tcp://127.0.0.1:8786", "host:8786", "tls://[::1]:8786", "inproc://1/2/3"):
+        sweep_module._check_scheduler(address)  # checked only: nothing is connected
+
+
+def test_concurrent_sweeps_of_one_store_solve_each_mu_once(tmp_path, monkeypatch):
+    """Two sweeps of one store at once (threads here: flock keeps two opens of one file apart
+    as it keeps two processes): each μ is solved by one and read by the other, and released
+    locks leave no file."""
+    solved, both_start = [], threading.Barrier(2)
+
+    def serial_jobs(jobs, todo, args):
+        for mu in todo:
+            time.sleep(0.3)  # the other sweep meanwhile finds this μ taken
+            solved.append(mu)
+            yield mu, solve_for_sweep(mu, *args)
+
+    monkeypatch.setattr(sweep_module, "_local_jobs", serial_jobs)
+
+    def one_sweep(_):
+        both_start.wait(timeout=30)
+        return sweep([0.3, 1.0], error_estimate=False, cache=tmp_path, **FAST)
+
+    with ThreadPoolExecutor(2) as pool:
+        first, second = pool.map(one_sweep, range(2))
+    assert sorted(solved) == [0.3, 1.0]
+    assert first.solved + second.solved == 2 and first.stored + second.stored == 2
+    assert [r.curve.events for r in first.rows] == [r.curve.events for r in second.rows]
+    assert not list(tmp_path.glob("*.lock"))
+
+
+def _live_children(pid):
+    """The pids of the processes (zombies left out) whose parent is `pid`, from /proc."""
+    children = []
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            state, parent = stat.read_text().rsplit(")", 1)[1].split()[:2]
+        except OSError:  # ended meanwhile
+            continue
+        if int(parent) == pid and state != "Z":
+            children.append(int(stat.parent.name))
+    return children
+
+
+def _alive(pid):
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="reads processes from /proc")
+def test_the_workers_of_a_killed_sweep_end_with_it(tmp_path):
+    """SIGKILL runs no cleanup in the sweep's process: its workers, and with them
+    multiprocessing's resource tracker, must end on their own."""
+    (tmp_path / "sleeper.py").write_text(
+        "import pathlib, time\n\n"
+        "def job(flag):\n    pathlib.Path(flag).touch()\n    time.sleep(600)\n")
+    flags = [str(tmp_path / f"started-{i}") for i in range(2)]
+    code = (f"import sys; sys.path.insert(0, {str(tmp_path)!r}); import sleeper; "
+            "from fem_asperity.studies.sweep import _local_jobs; "
+            f"list(_local_jobs(2, {flags!r}, (), job=sleeper.job))")
+    sweeping = subprocess.Popen([sys.executable, "-c", code], stderr=subprocess.DEVNULL)
+    children = []
+    try:
+        deadline = time.monotonic() + 60
+        while not all(map(os.path.exists, flags)):  # both workers busy in their job
+            assert time.monotonic() < deadline and sweeping.poll() is None
+            time.sleep(0.05)
+        children = _live_children(sweeping.pid)
+        assert len(children) == 3  # the two workers and the resource tracker
+        sweeping.kill()
+        sweeping.wait()
+        deadline = time.monotonic() + 5
+        while any(map(_alive, children)) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert not any(map(_alive, children))
+    finally:  # whatever the test found, it leaves no process behind
+        sweeping.kill()
+        sweeping.wait()
+        for pid in filter(_alive, children):
+            os.kill(pid, signal.SIGKILL)

@@ -5,7 +5,10 @@ A curve at (μ, method, accuracy, solid) is solved once with `solver.solve.solve
 ~/.cache/adhesion-verification, with `manifest.json` (their checksums) written last: a folder
 without it is solved again, one whose files no longer match it is moved aside and solved again.
 Folders carry the solver's revision (`solver_revision`): a changed solver solves afresh instead
-of serving an older solver's curves.
+of serving an older solver's curves. Processes that share a store solve each curve once, the
+others waiting for it (`lock_entry`). A store that holds what is asked for is only read, so it
+may be read-only; one that cannot serve (a file in its place, a corrupt entry it cannot move
+aside) is an `InputError` naming $ADHESION_CACHE and the path.
 """
 
 import contextlib
@@ -20,14 +23,23 @@ from pathlib import Path
 import numpy as np
 
 from ..path.curve import Curve, Events, Jump, curve_from_columns
+from ..plumbing.errors import InputError
 from ..plumbing.files import writable_folder, write_atomic
 from ..plumbing.revision import solver_revision
 from ..solids.fe import Solid
+from ..solver.presets import METHODS, PRESETS
 from ..solver.result import curve_files, relative_estimate
-from ..solver.solve import estimate_kind, solve_curve
+from ..solver.solve import estimate_kind, solvable_mu, solve_curve
+
+try:
+    import fcntl
+except ImportError:  # no flock (Windows): no lock, at worst a curve solved twice
+    fcntl = None
 
 #: Cost columns of a stored curve (from its result.json).
 COST_KEYS = ("dofs", "surface_nodes", "points", "newton_iterations", "wall_s")
+#: How errors name the store: by the setting that chooses its folder.
+STORE = "the store ($ADHESION_CACHE)"
 
 
 @dataclass(frozen=True)
@@ -68,10 +80,29 @@ def _events_from_dict(data):
     return Events(**{**data, **jumps})
 
 
+def _store_folder(folder):
+    """Refuse (`InputError`) the store's `folder` where a file stands in its place or in a
+    parent's: reading under it fails as if every entry were corrupt."""
+    folder = Path(folder)
+    existing = next(p for p in (folder, *folder.absolute().parents) if p.exists())
+    if not existing.is_dir():
+        raise InputError(f"{STORE} must be a folder; {existing} is a file")
+
+
 def mu_key(mu):
     """μ as the store tells curves apart: to 12 significant digits (μ equal to that many digits
     share a curve)."""
     return float(f"{float(mu):.12g}")
+
+
+def check_entry(mu, method, accuracy):
+    """`mu` as the store keys it (`mu_key`), once μ, method and accuracy are found to be what
+    `solve_curve` accepts (else `InputError`): checked before the store creates any file."""
+    mu = solvable_mu(mu)
+    if method not in METHODS or accuracy not in PRESETS:
+        raise InputError(f"method must be one of {', '.join(METHODS)} and accuracy one of "
+                         f"{', '.join(PRESETS)}; got {method!r}, {accuracy!r}")
+    return mu_key(mu)
 
 
 def curve_folder(mu, *, method, accuracy, error_estimate, estimate_by="auto",
@@ -111,7 +142,12 @@ def _move_aside(path, what):
     """Rename the corrupt `path` to the first free `<path>.corrupt-N` and warn in one line."""
     aside = next(path.with_name(f"{path.name}.corrupt-{n}") for n in range(1, 10**6)
                  if not path.with_name(f"{path.name}.corrupt-{n}").exists())
-    os.replace(path, aside)
+    try:
+        os.replace(path, aside)
+    except OSError as exc:  # e.g. a read-only store
+        raise InputError(f"{STORE}: {path} is corrupt and cannot be moved aside "
+                         f"({exc.strerror}); make the store writable, or remove that "
+                         "entry") from None
     warnings.warn(f"stored {what} {path.name} was corrupt: moved to {aside.name}, computing it "
                   "again", StoreWarning, stacklevel=3)
 
@@ -120,6 +156,7 @@ def read_stored_json(path, build):
     """`build(data)` of the stored JSON file `path`; None if it is not there, or unreadable (then
     moved aside with a `StoreWarning`, so that the caller computes it again)."""
     path = Path(path)
+    _store_folder(path.parent)
     try:
         return build(json.loads(path.read_text()))
     except FileNotFoundError:
@@ -134,6 +171,7 @@ def stored_json(path, build, compute, dump):
     of results smaller than a curve (the onset, the refit)."""
     found = read_stored_json(path, build)
     if found is None:
+        writable_folder(Path(path).parent, STORE)  # before computing
         found = compute()
         write_atomic(path, json.dumps(dump(found), indent=1) + "\n")
     return found
@@ -151,22 +189,66 @@ def keep(result, folder):
     write_atomic(folder / MANIFEST, json.dumps(manifest, indent=1) + "\n")
 
 
+#: What `lock_entry` returns where there is no flock.
+NO_LOCK = "no lock"
+
+
+def lock_entry(folder, wait=True):
+    """Take the lock of the store entry `folder` (flock of the file `<folder>.lock`), held while
+    its curve is checked and solved, so that two processes asking for one curve solve it once:
+    the second waits, then reads it. wait=False: None at once where another process holds it.
+    Give the lock to `unlock_entry`, which removes its file.
+
+    The file is removed while it is still locked, and a lock counts only if the locked file is
+    still the one at its name, else it is taken again: a process that waited on the file wakes
+    holding a removed file, while a newcomer may have locked a new one of that name. (Removing
+    it after unlocking could instead remove a file that another process has just locked.)"""
+    if fcntl is None:
+        return NO_LOCK
+    path = folder.with_name(folder.name + ".lock")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    while True:
+        lock = open(path, "a")
+        try:
+            fcntl.flock(lock, fcntl.LOCK_EX if wait else fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            lock.close()
+            return None
+        except BaseException:  # e.g. Ctrl-C while waiting
+            lock.close()
+            raise
+        if _still_named(lock, path):
+            return lock
+        lock.close()
+
+
+def _still_named(lock, path):
+    """Whether the open file `lock` is still the file at `path`."""
+    try:
+        return os.path.samestat(os.fstat(lock.fileno()), os.stat(path))
+    except FileNotFoundError:
+        return False
+
+
+def unlock_entry(lock):
+    """Release a lock of `lock_entry`: remove its file, then unlock it (closing it)."""
+    if lock is NO_LOCK:
+        return
+    try:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(lock.name)
+    finally:
+        lock.close()
+
+
 @contextlib.contextmanager
 def _entry_lock(folder):
-    """Hold `<folder>.lock` (flock) while an entry is checked and solved, so that two processes
-    asking for the same curve solve it once: the second waits, then reads it."""
+    """Hold the lock of the store entry `folder` (`lock_entry`) inside the block."""
+    lock = lock_entry(folder)
     try:
-        import fcntl
-    except ImportError:  # no flock (Windows): no lock, at worst a curve solved twice
         yield
-        return
-    folder.parent.mkdir(parents=True, exist_ok=True)
-    with open(folder.with_name(folder.name + ".lock"), "a") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        try:
-            yield
-        finally:
-            fcntl.flock(lock, fcntl.LOCK_UN)
+    finally:
+        unlock_entry(lock)
 
 
 def _curve(data):
@@ -190,6 +272,7 @@ def load_stored(folder):
     entry whose files no longer match their manifest (cut, garbled, missing) or do not parse is
     moved aside (`<folder>.corrupt-N`) with a `StoreWarning`, and counts as none."""
     folder = Path(folder)
+    _store_folder(folder.parent)
     try:
         recorded = json.loads((folder / MANIFEST).read_text())
     except FileNotFoundError:
@@ -211,12 +294,13 @@ def stored_curve(mu, *, method="bem", accuracy="default", error_estimate=False,
     """`StoredCurve` at `mu` on `solid`, solved now (and stored) if not stored yet;
     `unstable_branch`: its `equilibrium` is the whole curve, unstable branches included
     (`solve_curve`)."""
+    check_entry(mu, method, accuracy)  # before any file is made
     folder = curve_folder(mu, method=method, accuracy=accuracy, error_estimate=error_estimate,
                           unstable_branch=unstable_branch, solid=solid, cache=cache)
     stored = load_stored(folder)
     if stored is not None:
         return stored
-    writable_folder(folder.parent, "the store ($ADHESION_CACHE)")  # before solving
+    writable_folder(folder.parent, STORE)  # before solving
     with _entry_lock(folder):
         stored = load_stored(folder)  # another process may have solved it while we waited
         if stored is None:

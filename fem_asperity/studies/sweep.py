@@ -6,6 +6,9 @@ each: `solver.solve.PATH_BLAS_THREADS`) or on a Dask cluster (`scheduler`, the a
 running `dask.distributed` scheduler; the optional extra `cluster`). Workers only solve; this
 process keeps each result in its own store, so a cluster needs no shared file system. A μ whose
 curve fails is reported in its row (status 'failed' and the error) and never costs the others.
+A μ that another process is solving into the same store (another sweep, a `stored_curve`) is
+waited for and read, not solved twice (`store.lock_entry`). Worker processes end with the sweep's
+process, even when it is killed.
 
 Output (`Sweep.write`): events.csv (one row per μ: every event, its error estimate absolute and
 relative, the cost and the status), curves.csv (the approach and retraction paths in long format)
@@ -17,6 +20,7 @@ import io
 import json
 import multiprocessing
 import os
+import threading
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from concurrent.futures.process import BrokenProcessPool
@@ -33,18 +37,23 @@ from ..plumbing.errors import InputError
 from ..plumbing.files import staged_folder, writable_folder, write_atomic
 from ..plumbing.version import __version__
 from ..solids.fe import Solid
-from ..solver.presets import METHODS, PRESETS
-from ..solver.solve import MU_RANGE, solve_curve
+from ..solver.solve import solvable_mu, solve_curve
 from .store import (
     COST_KEYS,
+    STORE,
     cache_dir,
+    check_entry,
     curve_folder,
     keep,
     load_stored,
+    lock_entry,
     mu_key,
     solver_revision,
+    unlock_entry,
 )
 
+#: Who writes a sweep's output folder, as its record says (`plumbing.files.staged_folder`).
+OWNER = "python -m fem_asperity sweep"
 #: Columns of curves.csv with their units (dimensionless, the paper's scales).
 CURVE_COLUMNS = {"mu": "-", "path": "approach | retraction", "point": "index along the path",
                  "delta_o": "eps", "x_o": "eps", "p": "2 pi R dgamma (< 0 tensile)",
@@ -165,9 +174,10 @@ class Sweep:
                           "curves": CURVE_COLUMNS}}
 
     def write(self, folder):
-        """events.csv, curves.csv and sweep.json into `folder`, all or none."""
+        """events.csv, curves.csv and sweep.json into `folder`, all or none. `folder` is new,
+        empty or an earlier sweep's (`OWNER`); a folder holding other files is refused."""
         folder = Path(folder)
-        with staged_folder(folder) as stage:
+        with staged_folder(folder, owner=OWNER) as stage:
             write_atomic(stage / "events.csv", _csv(self.events_table()))
             write_atomic(stage / "curves.csv", _csv(self.curves_table(), list(CURVE_COLUMNS)))
             write_atomic(stage / "sweep.json",
@@ -194,11 +204,17 @@ def _csv(rows, columns=None):
     return out.getvalue()
 
 
+#: Most μ of a `mu_range`: a curve each, seconds to minutes apiece.
+MU_RANGE_MAX_N = 10_000
+
+
 def mu_range(lo, hi, n):
     """`n` Tabor parameters from `lo` to `hi`, evenly spaced in log μ (μ spans decades)."""
-    lo, hi = in_range("lo", lo, 0.0, 1e4), in_range("hi", hi, 0.0, 1e4)
-    if not (lo < hi and int(n) == n and n >= 2):
-        raise InputError(f"mu range needs lo < hi and n >= 2 whole; got {lo:g}, {hi:g}, {n}")
+    lo, hi = solvable_mu(lo, "lo (--mu-range LO)"), solvable_mu(hi, "hi (--mu-range HI)")
+    n = in_range("n (--mu-range N)", n)  # a finite number
+    if not (lo < hi and int(n) == n and 2 <= n <= MU_RANGE_MAX_N):
+        raise InputError(f"mu range (--mu-range LO HI N) needs lo < hi and n whole in [2, "
+                         f"{MU_RANGE_MAX_N}]; got {lo:g}, {hi:g}, {n:g}")
     return [float(m) for m in np.geomspace(lo, hi, int(n))]
 
 
@@ -217,14 +233,41 @@ class WorkerDied(RuntimeError):
     """The worker process solving a μ ended without a result (killed, out of memory, crashed)."""
 
 
+#: How often a worker checks that the sweep's process still lives [s]: a worker outlives a
+#: killed sweep by at most this (plus the rest of a call that holds the GIL).
+PARENT_CHECK_S = 0.5
+
+
+def _end_with_parent(parent):
+    """Worker initializer: end this worker (os._exit) once the sweep's process `parent` (its
+    pid) has ended, however it ended.
+
+    A sweep killed by SIGKILL runs no cleanup, and an idle or busy worker would live on for
+    ever (and with it multiprocessing's resource tracker, which ends when the last process
+    holding its pipe does). An orphan gets a new parent (init or a subreaper), so a thread
+    that polls os.getppid() sees it on any POSIX system. Not prctl(PR_SET_PDEATHSIG): Linux
+    only, and it fires when the *thread* that started the worker ends, which for
+    ProcessPoolExecutor is the caller's thread or its manager thread (it starts replacement
+    workers), so it could kill the workers of a sweep that lives on."""
+
+    def watch():
+        while os.getppid() == parent:
+            time.sleep(PARENT_CHECK_S)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="end-with-sweep", daemon=True).start()
+
+
 def _pool_jobs(jobs, todo, args, job):
-    """Run `job(μ, *args)` for each μ of `todo` in `jobs` fresh processes; yield (μ, result),
-    then return the μ whose results were lost because a worker died (the pool breaks)."""
+    """Run `job(μ, *args)` for each μ of `todo` in `jobs` fresh processes (each ending with this
+    one: `_end_with_parent`); yield (μ, result), then return the μ whose results were lost
+    because a worker died (the pool breaks)."""
     # Fresh interpreters (spawn): forking a process that runs BLAS and progress threads can
     # deadlock, and Python deprecates it.
     context = multiprocessing.get_context("spawn")
     lost = []
-    with ProcessPoolExecutor(max_workers=jobs, mp_context=context) as pool:
+    with ProcessPoolExecutor(max_workers=jobs, mp_context=context, initializer=_end_with_parent,
+                             initargs=(os.getpid(),)) as pool:
         futures = {pool.submit(job, mu, *args): mu for mu in todo}
         try:
             for future in as_completed(futures):
@@ -252,14 +295,28 @@ def _local_jobs(jobs, todo, args, job=solve_for_sweep):
             yield mu, WorkerDied(f"the worker process solving mu = {mu:g} died")
 
 
-def _cluster_jobs(scheduler, todo, args):
-    """Submit the curves to the Dask scheduler at `scheduler`; yield (μ, result or exception)."""
+def _check_scheduler(scheduler):
+    """Refuse (`InputError` naming --scheduler) an address that is no Dask scheduler's
+    ('tcp://host:8786': a known scheme and, where it has them, a host and port), and a missing
+    dask.distributed; nothing is connected yet."""
     try:
-        from dask.distributed import Client
-        from dask.distributed import as_completed as completed
+        from distributed.comm import get_address_host_port, parse_address
     except ImportError:
         raise InputError("--scheduler needs dask.distributed: pip install "
                          "'adhesive-contact-verification[cluster]'") from None
+    try:
+        if parse_address(scheduler)[0] != "inproc":  # an in-process cluster's has no port
+            get_address_host_port(scheduler)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"--scheduler must be the address of a Dask scheduler, such as "
+                         f"tcp://host:8786; got {scheduler!r} ({exc})") from None
+
+
+def _cluster_jobs(scheduler, todo, args):
+    """Submit the curves to the Dask scheduler at `scheduler`; yield (μ, result or exception)."""
+    from dask.distributed import Client
+    from dask.distributed import as_completed as completed
+
     with Client(scheduler) as client:
         futures = {client.submit(solve_for_sweep, mu, *args, pure=False): mu for mu in todo}
         for future in completed(list(futures)):
@@ -268,6 +325,53 @@ def _cluster_jobs(scheduler, todo, args):
             except Exception as exc:  # e.g. KilledWorker: reported in its row
                 result = exc
             yield futures[future], result
+
+
+#: Most store locks a sweep holds at once (each is an open file, and the soft limit on open
+#: files can be as low as 256): more μ than this are solved in rounds.
+LOCKS_AT_ONCE = 128
+
+
+def _free_locks(pending, folders):
+    """{μ: its store lock} for the first μ of `pending` (up to LOCKS_AT_ONCE) whose lock no
+    other process holds."""
+    locks = {}
+    for mu in pending:
+        if len(locks) == LOCKS_AT_ONCE:
+            break
+        if (lock := lock_entry(folders[mu], wait=False)) is not None:
+            locks[mu] = lock
+    return locks
+
+
+def _unclaimed(todo, folders, run):
+    """(μ, result or exception) of `run(μs)` for each μ of `todo` that no other process is
+    solving into the same store, and (μ, None) for each that another process stored meanwhile.
+
+    Each μ's store lock (`store.lock_entry` of its folder in `folders`) is taken before its
+    solve and released when the caller, having kept its result, asks for the next: a μ locked
+    elsewhere is left to its holder, waited for when nothing else is left, then read, or solved
+    here if the holder stored nothing (it failed or was killed). This waits only while it holds
+    no lock, so two sweeps never wait for each other."""
+    pending, locks = list(todo), {}
+    try:
+        while pending:
+            locks = _free_locks(pending, folders)
+            if not locks:  # every one is being solved elsewhere: wait for one, then look again
+                unlock_entry(lock_entry(folders[pending[0]]))
+                continue
+            for mu in list(locks):
+                if load_stored(folders[mu]) is not None:  # stored elsewhere while we looked
+                    unlock_entry(locks.pop(mu))
+                    pending.remove(mu)
+                    yield mu, None
+            for mu, result in run(list(locks)) if locks else ():
+                yield mu, result
+                unlock_entry(locks.pop(mu))
+                pending.remove(mu)
+    finally:  # an error or Ctrl-C: what is stored stays stored, the rest is free again
+        for lock in locks.values():
+            unlock_entry(lock)
 
 
 def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, estimate_by="auto",
@@ -281,33 +385,38 @@ def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, estimat
     curves to solve that are done), called as each finishes. scales: the `Scales` the μ came
     from (physical inputs), for SI columns in the events.
     """
-    # μ as the store tells them apart (`mu_key`): μ that share a folder are one μ.
-    mus = sorted({mu_key(in_range("mu", m, *MU_RANGE, closed_lo=True))
-                  for m in np.atleast_1d(mus)})
+    # Every input is checked before the store is touched. μ as the store tells them apart
+    # (`mu_key`): μ that share a folder are one μ.
+    mus = sorted({check_entry(m, method, accuracy) for m in np.atleast_1d(mus)})
     if not mus:
         raise InputError("a sweep needs at least one mu")
-    if method not in METHODS or accuracy not in PRESETS:
-        raise InputError(f"method must be one of {', '.join(METHODS)} and accuracy one of "
-                         f"{', '.join(PRESETS)}; got {method!r}, {accuracy!r}")
-    jobs = (os.cpu_count() or 1) if jobs is None else jobs
+    jobs = in_range("jobs", (os.cpu_count() or 1) if jobs is None else jobs)
     if int(jobs) != jobs or jobs < 1:
         raise InputError(f"jobs must be a whole number >= 1; got {jobs!r}")
-    writable_folder(cache or cache_dir(), "the store ($ADHESION_CACHE)")  # before solving
+    if scheduler is not None:
+        _check_scheduler(scheduler)
     start = time.perf_counter()
     folders = {mu: curve_folder(mu, method=method, accuracy=accuracy, solid=solid,
                                 error_estimate=error_estimate, estimate_by=estimate_by,
                                 cache=cache) for mu in mus}
     stored = {mu: load_stored(folders[mu]) for mu in mus}
     todo = [mu for mu in mus if stored[mu] is None]
-    failures = {}
+    if todo:  # before solving; a store that holds every μ is only read (it may be read-only)
+        writable_folder(cache or cache_dir(), STORE)
+    failures, solved = {}, 0
     args = (method, accuracy, error_estimate, solid, estimate_by)
-    runs = (_cluster_jobs(scheduler, todo, args) if scheduler
-            else _local_jobs(int(jobs), todo, args))
-    for done, (mu, result) in enumerate(runs, 1):
+
+    def run(batch):
+        return (_cluster_jobs(scheduler, batch, args) if scheduler is not None
+                else _local_jobs(int(jobs), batch, args))
+
+    for done, (mu, result) in enumerate(_unclaimed(todo, folders, run), 1):
         if isinstance(result, BaseException):
             failures[mu] = f"{type(result).__name__}: {result}"
         else:
-            keep(result, folders[mu])
+            if result is not None:  # None: solved and stored by another process meanwhile
+                keep(result, folders[mu])
+                solved += 1
             stored[mu] = load_stored(folders[mu])
         if progress is not None:
             progress(done / len(todo))
@@ -317,7 +426,7 @@ def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, estimat
             rows.append(SweepRow(mu, "failed", failures[mu]))
         else:
             rows.append(SweepRow(mu, stored[mu].status, stored[mu].message, stored[mu]))
-    return Sweep(method, accuracy, error_estimate, tuple(rows), solved=len(todo) - len(failures),
-                 stored=len(mus) - len(todo), wall_s=time.perf_counter() - start,
+    return Sweep(method, accuracy, error_estimate, tuple(rows), solved=solved,
+                 stored=len(mus) - solved - len(failures), wall_s=time.perf_counter() - start,
                  scales=tuple(scales), solid=solid, estimate_by=estimate_by)
 
