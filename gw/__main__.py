@@ -30,8 +30,8 @@ from .tables import solved_law
 PROG = "python -m gw"
 #: --compare warns where the paper's law is off the solved law by more than this fraction of F̄max.
 COMPARE_WARNING = 0.1
-#: Most d values of `curve`: 10^4 take 0.5 s and 0.2 GB (10^5: 4 s and 1.3 GB; memory grows as
-#: 220 x points per piece), and are far more than a plot needs.
+#: Most d values of `curve`: far more than a plot needs, while the memory grows as about 220
+#: floats per point and piece (1e8 points asked for 164 GiB). test_gw pins the bound.
 POINTS_MAX = 10_000
 #: Laws solved at --mu (a curve of that solver), which takes mu in solver.solve.MU_RANGE only.
 SOLVED = ("fem", "bem")

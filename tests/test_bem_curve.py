@@ -409,3 +409,11 @@ def test_an_interrupted_curve_stops_its_estimate_solve_too(monkeypatch, options,
     with pytest.raises(KeyboardInterrupt):
         solve.solve_curve(3.0, accuracy="fine", **options)
     assert ended == {"estimate": "_Stopped"}
+
+
+def test_the_solved_range_includes_both_ends_and_says_why_above():
+    from fem_asperity.solver.solve import MU_RANGE, solvable_mu
+
+    assert [solvable_mu(mu) for mu in MU_RANGE] == list(MU_RANGE)
+    with pytest.raises(InputError, match="at most 50 for a solved curve; got 50.01: .*JKR"):
+        solvable_mu([1.0, 50.01])

@@ -341,7 +341,7 @@ def no_work(monkeypatch):
 
 
 @pytest.mark.parametrize("args, names", [
-    # 1e8 points: a 164 GiB allocation after 65 s.
+    # 1e8 points: a 164 GiB allocation, found only after the integrals ran.
     (["curve", "--mu", "1", "--zeta", "2", "--points", "100000000"], ("--points", "2 to 10000")),
     (["curve", "--mu", "1", "--zeta", "1", "--law", "bem", "--points", "1"], ("--points",)),
     # inf: reported as d = nan with two numpy warnings; nan, 1e307: named "d", not "--d".
@@ -351,7 +351,7 @@ def no_work(monkeypatch):
     # MIN >= MAX: accepted, the table printed from 5 down to 1 (or three times d = 1).
     (["curve", "--mu", "1", "--zeta", "2", "--d", "5", "1"], ("--d", "MIN < MAX")),
     (["curve", "--mu", "1", "--zeta", "2", "--d", "1", "1"], ("--d", "MIN < MAX")),
-    # refitted for 66 s before the 1/mu check refused.
+    # refitted (a minute) before the 1/mu check refused.
     (["fmax", "--mu", "1e-300", "--zeta", "1", "--compare"], ("1/mu", "1e+50")),
     (["fmax", "--mu", "1", "--zeta", "1e300", "--law", "bem"], ("zeta/mu", "1e+50")),
     # below the solvers' range: refused only after the refit.

@@ -47,7 +47,7 @@ MU_ONSET_HI, REFINEMENTS = 0.6982, 2
 #: Tabor parameters a curve is solved for, both ends included: from the rigid limit (μ = 1e-3
 #: solves with both methods; 1e-300 overflowed) to the largest μ whose curve finishes at
 #: `draft` within minutes on two cores (benchmarks/large_mu.py --large times μ = 50; μ = 100
-#: ran past four minutes at 60 %: the cohesive zone narrows like μ^-1.5 and its grids grow);
+#: did not finish within minutes: the cohesive zone narrows like μ^-1.5 and its grids grow);
 #: above it JKR answers (TOO_STIFF). test_cli's bad-input test pins both ends.
 MU_RANGE = (1e-3, 50.0)
 #: Why a μ above MU_RANGE is refused, and what answers there.
@@ -67,7 +67,7 @@ SOFT_SPRING = ("a spring that soft lets the sphere land up to 1/k eps from the s
                "the pull-off, and the curve traced out to there costs like 1/k")
 #: Largest μ whose whole curve (the unstable branches, or a spring's load-line control) is
 #: traced: on one uniform grid, which must resolve the cohesive zone everywhere, its cost
-#: climbs steeply with μ (BEM draft: μ = 7 ran past four minutes; benchmarks/extremes.py
+#: climbs steeply with μ (BEM draft: μ = 7 did not finish within minutes; benchmarks/extremes.py
 #: times μ = 5 and 6). test_cli's bad-input test pins it.
 WHOLE_CURVE_MU_MAX = 6.0
 #: Progress shown until a solve and its error estimate have both ended.
