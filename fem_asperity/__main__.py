@@ -223,7 +223,8 @@ def _curve(args, parser):
     else:
         estimates = ("error_estimate", "relative_error_estimate")
         absolute, relative = (row[key] or {} for key in estimates)
-        provenance = ("layer_groups", "inputs", "version", "solver_revision", "si")
+        provenance = ("layer_groups", "inputs", "version", "solver_revision", "si",
+                      "estimate_floor")
         si = row.get("si", {})
         print_table([{"quantity": k, "value": v, "error_estimate": absolute.get(k),
                       "relative": relative.get(k), "SI": _si_text(k, si.get(k))}

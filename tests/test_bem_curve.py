@@ -417,3 +417,21 @@ def test_the_solved_range_includes_both_ends_and_says_why_above():
     assert [solvable_mu(mu) for mu in MU_RANGE] == list(MU_RANGE)
     with pytest.raises(InputError, match="at most 50 for a solved curve; got 50.01: .*JKR"):
         solvable_mu([1.0, 50.01])
+
+
+def test_the_estimate_of_a_force_sees_the_traction_beyond_the_grid():
+    """The BEM's traction grid ends at r = 100 √(Rε); the LJ traction beyond it pulls with
+    Bradley's force at the gap there, (4/3)(r²/2 + δ̄o)⁻² ≈ 5.3e-8, which a finer grid of the
+    same reach cannot see. Against the same BEM reaching 800 (its P̄off moved by 1.5e-10 from
+    400 to 800) the error of P̄off at μ = 1e-3 is that tail, and the estimate covers it."""
+    from fem_asperity.solver.solve import solve_discretised
+
+    result = solve_curve(1e-3, method="bem", accuracy="default")
+    far = solve_discretised(1e-3, replace(discretisation(1e-3, "default", method="bem"),
+                                          r_max=800.0))
+    error = abs(result.events.p_off - far.events.p_off)
+    floor = result.estimate_floor["p_off"]
+    assert floor == pytest.approx(4.0 / 3.0 * (5000.0 + result.events.delta_off) ** -2, rel=1e-6)
+    assert error > result.error_estimate["p_off"] - floor  # what refinement alone would say
+    assert error <= result.error_estimate["p_off"]
+    assert result.records()["estimate_floor"]["p_off"] == floor

@@ -145,7 +145,14 @@ class _Resolution:
 
     _GRADING = "grading"
     _LENGTHS = ()
+    _TRACTION_RADIUS = "r_max"
     follows_edge = False
+
+    @property
+    def traction_radius(self):
+        """Where the surface carrying the LJ traction ends (√(Rε)): the BEM's `r_max`, the FE
+        domain's `size`."""
+        return getattr(self, self._TRACTION_RADIUS)
 
     def _scaled(self, name, factor, grading, turn):
         lengths = {k: factor * getattr(self, k) for k in ("h_surface", *self._LENGTHS)}
@@ -176,6 +183,8 @@ class FEDiscretisation(_Resolution):
     """Finite elements of order `order` (2: quadratic) with surface edges of length h_surface on
     the strip r ≤ r_fine, growing by `grading` per unit distance from it, in a domain of
     `size` × `size` (√(Rε))."""
+
+    _TRACTION_RADIUS = "size"
 
     name: str
     h_surface: float

@@ -61,7 +61,9 @@ class CurveResult:
     relative to the event. estimated_by: how the estimate was made, 'finer' (the events again
     on a finer discretisation, `solve._estimate`), 'bem' (the FE against the boundary
     integral, `solve._estimate_against_bem`), 'tolerance' (the last change between refinement
-    levels, `solve.solve_to_tolerance`) or None (no estimate asked for).
+    levels, `solve.solve_to_tolerance`) or None (no estimate asked for). estimate_floor: the
+    part of each force's estimate that no refinement sees, {force key: 2πRΔγ}: the LJ traction
+    beyond the traction grid's last node (`solve.traction_tail`), added to the estimate.
     dofs, surface_nodes, points, newton_iterations, wall_s: cost.
     folds: folds of δ̄o met: changes of stability along the whole curve, or jumps of the paths.
     radius_ratio (R/ε of the exact sphere; None: Derjaguin's parabola), p_end, unstable_branch,
@@ -109,6 +111,7 @@ class CurveResult:
     regrid_radius_change: float | None = None
     regrid_fold_change: float | None = None
     estimated_by: str | None = None
+    estimate_floor: dict | None = None
     model: Model | None = field(default=None, repr=False, compare=False)
 
     @property
@@ -156,6 +159,7 @@ class CurveResult:
             "error_estimate": self.error_estimate,
             "relative_error_estimate": self.relative_error_estimate,
             "estimated_by": self.estimated_by,
+            "estimate_floor": self.estimate_floor,
             "dofs": self.dofs,
             "surface_nodes": self.surface_nodes,
             "regrid_change": self.regrid_change,

@@ -20,6 +20,7 @@ from dataclasses import replace
 import numpy as np
 from threadpoolctl import threadpool_limits
 
+from ..closed_forms.lj import bradley_force
 from ..path.branches import stable_paths
 from ..path.curve import ESTIMATED, read_events
 from ..path.grids import FixedGrid
@@ -88,6 +89,14 @@ RADII = ("a_c",)
 #: at the jump-out moved by 4.5e-7 between two placements, against an estimate of 4.1e-7
 #: without it. test_tip.py::test_the_jump_outs_fold_found_elsewhere_widens_its_estimate.
 FOLDS = ("delta_jump_out",)
+#: Each force estimated and the δ̄o it is read at. The surface carrying the LJ traction ends at
+#: a radius (`traction_radius`: the BEM's 100 √(Rε)); the traction beyond it, Bradley's force at
+#: the gap there (≈ (4/3)(r²/2)⁻² = 5.3e-8 at r = 100), is left out alike by the curve and by
+#: every finer partner (the same radius), so it is a floor under each force's estimate, added to
+#: it (`traction_tail`): BEM `default` at μ = 1e-3 and 0.01, P̄off moved by 4.4e-8 between
+#: r = 100 and 800 (by 1.5e-10 between 400 and 800), its estimate 1.1e-9 without the floor;
+#: test_bem_curve.py::test_the_estimate_of_a_force_sees_the_traction_beyond_the_grid.
+FORCE_AT = {"p_max": "delta_oc", "p_jump_after": "delta_jump_in", "p_off": "delta_off"}
 #: Against the boundary integral the FE's estimate is DIFFERENCE_FACTOR |FE − BEM| plus the
 #: BEM's own estimate, 2: the FE's error is at most |FE − BEM| + the BEM's error, and the BEM's
 #: estimate bounds that only where it exceeds the continuation's tolerance (about 1e-8); twice
@@ -328,12 +337,29 @@ def _with_estimate(mu, disc, options, progress, by):
         moved = {**dict.fromkeys(FORCES, result.regrid_change),
                  **dict.fromkeys(RADII, result.regrid_radius_change),
                  **dict.fromkeys(FOLDS, result.regrid_fold_change)}
-        estimate = {k: (v + moved[k] if k in moved and v is not None else v)
-                    for k, v in estimate.items()}
+        estimate = _added(estimate, moved)
+    floor = traction_tail(result.events, disc.traction_radius) if estimate is not None else None
     if progress:
         progress(1.0)
-    return replace(result, error_estimate=estimate, estimated_by=by, status=status,
-                   message=result.message + note, wall_s=time.perf_counter() - start)
+    return replace(result, error_estimate=_added(estimate, floor), estimated_by=by,
+                   estimate_floor=floor, status=status, message=result.message + note,
+                   wall_s=time.perf_counter() - start)
+
+
+def traction_tail(events, radius):
+    """{force key: the LJ traction's force beyond `radius` (√(Rε)) at the event's δ̄o}, in
+    2πRΔγ: Bradley's force at the gap there, δ̄o + radius²/2 (the solid's deflection that far
+    out is negligible; the exact sphere's gap grows faster still). The floor of `FORCE_AT`."""
+    records = events.records()
+    return {key: abs(bradley_force(records[at] + 0.5 * radius**2))
+            for key, at in FORCE_AT.items() if records[key] is not None}
+
+
+def _added(estimate, extra):
+    """`estimate` with `extra` added to its entries (None stays None, as does a None entry)."""
+    if estimate is None or not extra:
+        return estimate
+    return {k: (v + extra[k] if k in extra and v is not None else v) for k, v in estimate.items()}
 
 
 def _estimated_near_events(mu, disc, options, progress, pool):
@@ -576,9 +602,11 @@ def solve_to_tolerance(mu, tolerance, *, method="fem", solid=Solid(), radius_rat
         note = (f"; tolerance {tolerance:g} on P̄max, P̄off " + ("met" if done else "NOT met")
                 + f" after {k + 1} levels (relative change {worst:.2g}, h = {disc.h_surface:.4g})")
         status = result.status if done else worst_status(result.status, "tolerance_not_met")
-        result = replace(result, accuracy=f"tolerance {tolerance:g}", error_estimate=change,
-                         estimated_by="tolerance",
-                         wall_s=wall + result.wall_s, status=status, message=result.message + note)
+        floor = traction_tail(result.events, disc.traction_radius)
+        result = replace(result, accuracy=f"tolerance {tolerance:g}",
+                         error_estimate=_added(change, floor), estimated_by="tolerance",
+                         estimate_floor=floor, wall_s=wall + result.wall_s, status=status,
+                         message=result.message + note)
         if done:
             break
         previous, previous_disc = result, disc
