@@ -488,16 +488,16 @@ def test_out_dot_writes_into_the_current_folder_and_replaces_its_own_files(tmp_p
 @pytest.mark.parametrize("args, says", [
     (["--mu", "100"], "mu must be at most 50 for a solved curve; got 100: above it the "
                       "cohesive zone is too narrow"),
-    (["--mu", "1", "--spring-constant", "1e-6"], "--spring-constant must be in [1e-05, 1e+12); "
-                                                 "got 1e-06: a spring that soft"),
-    (SI + ["--spring-constant", "1e-300"], "--spring-constant must be in [0.010472, "
+    (["--mu", "1", "--spring-constant", "1e-10"], "--spring-constant must be in [1e-09, "
+                                                  "1e+12); got 1e-10: the approach starts"),
+    (SI + ["--spring-constant", "1e-300"], "--spring-constant must be in [1.0472e-06, "
                                            "1.0472e+15) N/m"),
     (SI + ["--layer-thickness", "1e-300"], "--layer-thickness must be in [1.73205e-10, "
                                            "1.73205e-05) m"),
 ])
 def test_a_range_is_refused_in_the_users_units_and_says_why(args, says):
-    """Beyond what the solver serves within minutes (μ = 50; k̄ = 1e-5, i.e. 1e-5 · 2πRΔγ/ε =
-    0.010472 N/m at R = 1 µm, Δγ = 0.05 J/m², ε = 0.3 nm), and a layer thickness given in m
+    """Beyond what the solver serves within minutes (μ = 50; k̄ = 1e-9, i.e. 1e-9 · 2πRΔγ/ε =
+    1.0472e-6 N/m at R = 1 µm, Δγ = 0.05 J/m², ε = 0.3 nm), and a layer thickness given in m
     bounded in m (0.01-1000 √(Rε) = 1.73205e-10-1.73205e-5 m)."""
     done = cli("fem_asperity", "curve", *args)
     assert done.returncode == 2 and says in done.stderr, done.stderr

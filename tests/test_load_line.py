@@ -61,9 +61,28 @@ def test_a_soft_spring_jumps_below_the_onset_and_earlier():
     assert soft["z_jump_in"] > stiff["z_jump_in"] and soft["z_jump_out"] > stiff["z_jump_out"]
 
 
-def test_a_soft_spring_lands_beyond_the_usual_start():
+@pytest.mark.parametrize("k", [1e-5, 1e-9])
+def test_a_spring_softer_than_any_cantilever_jumps_where_bradleys_slope_is_its_stiffness(k):
+    """Far out the force is a rigid sphere's, −(4/3)δ̄o⁻² (Bradley): a very soft spring jumps in
+    where its slope (8/3)δ̄o⁻³ is k̄ (the solid's pull moves that by 0.05 % at k̄ = 1e-5 and
+    0.24 % at 1e-9, μ = 1), and after the pull-off flies to z̄ ≈ |P̄off|/k̄, where it lands on
+    that force: P̄ = k̄(δ̄o − z̄) = −(4/3)δ̄o⁻². The curve starts twice the jump-in out, not at
+    1/k̄ (8e8 at k̄ = 1e-9)."""
+    result = solve_curve(1.0, method="bem", accuracy="draft", spring_constant=k,
+                         error_estimate=False)
+    events, z = result.events, result.z_jumps
+    assert events.jump_in.delta == pytest.approx((8.0 / (3.0 * k)) ** (1.0 / 3.0), rel=5e-3)
+    out = events.jump_out
+    assert z["z_jump_out"] == pytest.approx(out.delta - out.p_before / k, rel=1e-6)
+    landed = result.retraction.delta[-1]
+    assert -result.retraction.p[-1] == pytest.approx(4.0 / 3.0 * landed**-2, rel=1e-6)
+    assert landed - result.retraction.p[-1] / k == pytest.approx(z["z_jump_out"], rel=1e-10)
+    assert result.points < 5000
+
+
+def test_a_soft_spring_lands_beyond_the_start():
     """A soft cantilever (k̄ = 0.002) lets go near Bradley's force, so the sphere flies to
-    z̄ ≈ δ̄off + |P̄off|/k̄ ≈ 490, far beyond the usual start x̄o = 40 (the film-on-silicon AFM
+    z̄ ≈ δ̄off + |P̄off|/k̄ ≈ 490, far beyond the start x̄o = 40 (the film-on-silicon AFM
     example failed there): it lands where the spring and the LJ force balance, P̄ = k̄(δ̄o − z̄),
     on the far-field force −(4/3)δ̄o⁻² of a rigid sphere."""
     k = 0.002

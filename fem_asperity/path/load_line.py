@@ -15,7 +15,9 @@ solved by Newton at the δ̄o interpolated in z̄.
 """
 
 import numpy as np
+from scipy.optimize import brentq
 
+from ..closed_forms.lj import bradley_force
 from ..plumbing.errors import ContinuationError
 from .curve import Jump, parabola_vertex
 from .whole_curve import COLUMNS, path_from_rows, point_row, state_at
@@ -48,11 +50,12 @@ def _fold(curve, z, i, j):
     return float(z_star), row
 
 
-def _landing(surface, traced, curve, z, stable, order, start, z_jump):
+def _landing(surface, traced, curve, z, stable, order, start, z_jump, k):
     """(position in `order` to go on from, row) of the first segment after `start` whose two ends
     are stable and whose z̄ spans `z_jump`: δ̄o interpolated linearly in z̄ between them, then the
     state there solved by Newton at that δ̄o (far from contact the samples are sparse, and P̄
-    interpolated between them was 7% off after the jump-out at μ = 2)."""
+    interpolated between them was 7% off after the jump-out at μ = 2). A jump away from the
+    surface past the curve's far start lands beyond it (`_far_landing`)."""
     for pos in range(start, len(order) - 1):
         a, b = order[pos], order[pos + 1]
         if not (stable[a] and stable[b]) or (z[a] - z_jump) * (z[b] - z_jump) > 0.0:
@@ -62,10 +65,29 @@ def _landing(surface, traced, curve, z, stable, order, start, z_jump):
         landed = state_at(surface, traced, a, b, t, delta)
         if landed is not None:
             return pos + 1, landed
+    if order[-1] == 0 and z_jump > z[0]:
+        return len(order), _far_landing(surface, traced, curve, z_jump, k)
     raise ContinuationError(f"no stable state to land on at z = {z_jump:.6g} under the spring")
 
 
-def _walk(surface, traced, curve, z, stable, order):
+def _far_landing(surface, traced, curve, z_jump, k):
+    """The state a soft spring's jump-out lands on beyond the curve's far start (δ̄o = δ̄₀ there):
+    where the spring balances the LJ pull, P̄ = k̄(δ̄o − z̄), on the far-field force of a rigid
+    sphere (Bradley's; the solid's deflection is smaller there than at δ̄₀), the state solved by
+    Newton at that δ̄o from the state at δ̄₀. So no curve is traced out to 1/k̄. Its P̄ is
+    Bradley's: the traction grid, ending at a finite radius, under-counts the pull that far out
+    (by 0.8 % at δ̄o = 490 on the BEM's r = 100, `solver.solve.traction_tail`)."""
+    start = float(curve.delta[0])
+    delta = brentq(lambda d: d - bradley_force(d) / k - z_jump, start, z_jump, xtol=1e-12,
+                   rtol=1e-12)
+    landed = state_at(surface, traced, 0, 0, 0.0, delta)
+    if landed is None:
+        raise ContinuationError(f"no state to land on at z = {z_jump:.6g} under the spring "
+                                f"(delta = {delta:.6g})")
+    return landed | {"p": bradley_force(delta)}
+
+
+def _walk(surface, traced, curve, z, stable, order, k):
     """Follow `order` under z̄ control: (path rows, their z̄, jumps, z̄ of each jump)."""
     rows, zs, jumps, z_jumps, branch, pos = [], [], [], [], 0, 0
     while pos < len(order):
@@ -76,7 +98,8 @@ def _walk(surface, traced, curve, z, stable, order):
             z_jump, before = _fold(curve, z, i, order[pos + 1])
             rows.append(before | {"branch": branch})
             zs.append(z_jump)
-            pos, after = _landing(surface, traced, curve, z, stable, order, pos + 1, z_jump)
+            pos, after = _landing(surface, traced, curve, z, stable, order, pos + 1, z_jump,
+                                  k)
             branch += 1
             rows.append(after | {"branch": branch})
             zs.append(z_jump)
@@ -97,8 +120,8 @@ def load_line_paths(surface, traced, curve, k):
     z = curve.delta - curve.p / k
     stable = spring_stable(curve, traced.tangents, k)
     order = np.arange(len(curve))
-    approach, z_approach, jumps_in, z_in = _walk(surface, traced, curve, z, stable, order)
+    approach, z_approach, jumps_in, z_in = _walk(surface, traced, curve, z, stable, order, k)
     retraction, z_retraction, jumps_out, z_out = _walk(surface, traced, curve, z, stable,
-                                                       order[::-1])
+                                                       order[::-1], k)
     return (path_from_rows(approach), path_from_rows(retraction), jumps_in, jumps_out,
             z_approach, z_retraction, z_in, z_out)
