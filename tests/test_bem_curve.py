@@ -385,6 +385,11 @@ def test_progress_rises_to_one_at_the_end_only(mu, estimate):
     assert all(b >= a for a, b in zip(seen, seen[1:]))
     assert seen[-1] == 1.0 and max(seen[:-1]) < 1.0
     assert max(seen[:-1]) > 0.9  # the retraction moves the bar on before the end
+    if estimate:  # traced after the curve, near each event: the bar moves on meanwhile
+        from fem_asperity.solver.solve import ALMOST_DONE, CURVE_SHARE
+
+        curve_done = len(seen) - seen[::-1].index(CURVE_SHARE)  # the curve's last report
+        assert any(CURVE_SHARE < f < ALMOST_DONE for f in seen[curve_done:])
 
 
 @pytest.mark.parametrize("options, is_estimates", [

@@ -48,7 +48,8 @@ class NotNear(ContinuationError):
     """An event of the curve has no counterpart near it on the finer discretisation."""
 
 
-def events_near(grids, settings, traced, branch, approach, retraction, jump_in, jump_out):
+def events_near(grids, settings, traced, branch, approach, retraction, jump_in, jump_out,
+                progress=None):
     """The events of a curve solved on `grids` (the finer discretisation's `grids.Grids`, with
     its trace `settings`) near where the curve has them: a dict of the `curve.ESTIMATED`
     events, None where the
@@ -59,10 +60,12 @@ def events_near(grids, settings, traced, branch, approach, retraction, jump_in, 
     traced: the curve's stable branches as one `continuation.Trace` (states, tangents and the
     nodes of each state); branch: their ids per point (`Curve.branch` of the equilibrium);
     approach, retraction: its displacement-control paths (`Curve`), jump_in, jump_out: its
-    first and last jumps (`curve.Jump` or None).
+    first and last jumps (`curve.Jump` or None). progress: callable(fraction of the events
+    found), called as each is.
     """
     near = _Near(grids, settings, traced, np.asarray(branch))
     found, missed = dict.fromkeys(ESTIMATED), {}
+    stages, done = 3 + bool(jump_in) + bool(jump_out), []  # the jumps, the extremes, δ̄o*
 
     def attempt(keys, compute, values=lambda result: result):
         """compute(): the `keys`' values (as `values` reads them); on a ContinuationError (none
@@ -71,8 +74,12 @@ def events_near(grids, settings, traced, branch, approach, retraction, jump_in, 
             result = compute()
         except ContinuationError as exc:
             missed.update(dict.fromkeys(keys, str(exc)))
-            return None
-        found.update(zip(keys, values(result)))
+            result = None
+        else:
+            found.update(zip(keys, values(result)))
+        done.append(keys)
+        if progress is not None:
+            progress(len(done) / stages)
         return result
 
     # The two folds' windows are independent: the jump-out's is traced on a second thread while

@@ -78,6 +78,12 @@ SPRING_FOLD_MARGIN = 2.0
 WHOLE_CURVE_MU_MAX = 6.0
 #: Progress shown until a solve and its error estimate have both ended.
 ALMOST_DONE = 0.99
+#: Share of the progress bar given to the curve where its estimate is traced after it, near
+#: each event (`_estimated_near_events`; the rest moves as the events are found): that
+#: estimate costs up to about as much as the curve (docs/accuracy-study.md), so the bar held
+#: at 99 % for a third of a run at μ = 50. test_bem_curve.py::test_progress_rises_to_one_at_
+#: the_end_only.
+CURVE_SHARE = 0.6
 #: The estimated forces: on grids that follow the edge their estimate adds the curve's
 #: `regrid_change`, the force change of a state moved between grids, which the finer partner
 #: (its grids placed alike) does not see: at μ = 8 (BEM draft) P̄off moved by 1.3e-8 with the
@@ -374,15 +380,17 @@ def _estimated_near_events(mu, disc, options, progress, pool):
     condensation)."""
     geometry = dict(solid=options["solid"], radius_ratio=options["radius_ratio"])
     finer_grids = pool.submit(disc.for_estimate().grids, mu, **geometry)
-    shown = (lambda f: progress(min(f, ALMOST_DONE))) if progress else None
-    result, solved_on, traced = _solve_refining(mu, disc, progress=shown, **options)
+    curve_shown = (lambda f: progress(CURVE_SHARE * f)) if progress else None
+    estimate_shown = ((lambda f: progress(CURVE_SHARE + (ALMOST_DONE - CURVE_SHARE) * f))
+                      if progress else None)
+    result, solved_on, traced = _solve_refining(mu, disc, progress=curve_shown, **options)
     try:
         partner_on = solved_on.for_estimate()
         grids = (finer_grids.result() if solved_on is disc
                  else partner_on.grids(mu, **geometry))
         near = events_near(grids, partner_on.trace, traced, result.equilibrium.branch,
                            result.approach, result.retraction, result.events.jump_in,
-                           result.events.jump_out)
+                           result.events.jump_out, progress=estimate_shown)
         a = result.events.records()
         note = _missed(near["missed"]) + (
             f"; error estimate from the finer discretisation traced near each event "
