@@ -129,3 +129,10 @@ def test_event_records_are_json_with_null_x_oc_without_jump_in():
     assert json.loads(text)[0]["x_oc"] is None
     assert rows[1]["x_oc"] == pytest.approx(-0.3 + 2.2 * 2**0.4)
     assert set(rows[0]) == {"mu", "p_max", "delta_oc", "delta_o_star", "a_c", "jump_in", "x_oc"}
+
+
+@pytest.mark.parametrize("law", ["force", "area"])
+def test_a_result_beyond_the_float_range_is_refused_not_returned_as_inf(law):
+    """At δ̄o = −1.7e308 the area π(δ̄o* − δ̄o) (and the Hertz force) leave the float range."""
+    with pytest.raises(InputError, match="beyond the float range"):
+        getattr(laws, law)(-1.7e308, mu=1.0)

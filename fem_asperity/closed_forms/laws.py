@@ -154,7 +154,9 @@ class AsperityLaws:
         Zero above δ̄o*; below it π(δ̄o* − δ̄o) without jump-in, π(ā_c² + δ̄o* − δ̄o) with it.
         """
         delta_o, mu = np.broadcast_arrays(in_range("delta_o", delta_o), _mu(mu))
-        return _out(_area(delta_o, *self._area_constants(mu)))
+        with np.errstate(over="ignore"):
+            area = _area(delta_o, *self._area_constants(mu))
+        return _out(finite_result(area, "the area π(δ̄o* − δ̄o)"))
 
     def _force_constants(self, mu):
         """(δ̄oc, P̄max, scale of Bradley's law above δ̄oc) at μ (arrays broadcast)."""
