@@ -34,8 +34,15 @@ def one(label, mu, method, accuracy, estimate, spring):
     result = solve_curve(mu, method=method, accuracy=accuracy, error_estimate=estimate,
                          spring_constant=spring, progress=ProgressBar(label))
     wall = time.perf_counter() - start
+    estimate = result.error_estimate or {}
     return {"run": label, "wall_s": wall, "status": result.status, "points": result.points,
-            "newton_iterations": result.newton_iterations, "p_off": result.events.p_off}
+            "newton_iterations": result.newton_iterations, "p_off": result.events.p_off,
+            "p_off_err": estimate.get("p_off"), "delta_o_star": result.events.delta_o_star,
+            "delta_o_star_err": estimate.get("delta_o_star")}
+
+
+def _cell(value, spec=".1e"):
+    return "-" if value is None else format(value, spec)
 
 
 def main():
@@ -45,10 +52,12 @@ def main():
     prov = provenance()
     rows = [one(*run) for run in (QUICK_RUNS if args.quick else RUNS)]
     lines = ["One run each, wall time as a user sees it (two cores).", "",
-             "| run | wall s | status | points | Newton iterations | P̄off |",
-             "|---|---|---|---|---|---|"]
+             "| run | wall s | status | points | Newton iterations | P̄off | ± | δ̄o* | ± |",
+             "|---|---|---|---|---|---|---|---|---|"]
     lines += [f"| {r['run']} | {r['wall_s']:.1f} | {r['status']} | {r['points']} | "
-              f"{r['newton_iterations']} | {r['p_off']:.6f} |" for r in rows]
+              f"{r['newton_iterations']} | {r['p_off']:.6f} | {_cell(r['p_off_err'])} | "
+              f"{_cell(r['delta_o_star'], '.4f')} | {_cell(r['delta_o_star_err'])} |"
+              for r in rows]
     paths = write_results("extremes", "The cost at the ends of the solved ranges", prov, lines,
                           {"rows": rows}, out=args.out, quick=args.quick)
     print("wrote " + ", ".join(map(str, paths)), file=sys.stderr)

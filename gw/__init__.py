@@ -5,13 +5,11 @@ constants), `TabulatedLaw` (a solved approach path), `solved_law` (a stored BEM/
 integrals: `totals` (F̄, S̄ at separations d̃), `strength` (F̄max). Units: see the README.
 """
 
-from fem_asperity.plumbing.interrupt import quiet_while_loading
+import fem_asperity  # noqa: F401  first: its import quiets a Ctrl-C while the modules load
 
-quiet_while_loading()  # before numpy and scipy load: the slow part of a command's start
-
-from .integrate import strength, totals  # noqa: E402
-from .laws import PaperLaw, TabulatedLaw  # noqa: E402
-from .surface import RoughSurface, omega_mccool  # noqa: E402
+from .integrate import strength, totals
+from .laws import PaperLaw, TabulatedLaw
+from .surface import RoughSurface, omega_mccool
 
 
 def __getattr__(name):

@@ -9,6 +9,7 @@ import pytest
 
 from fem_asperity.plumbing.errors import InputError
 from fem_asperity.plumbing.files import (
+    OURS_PREFIX,
     RECORD,
     STAGE_PREFIX,
     output_folder,
@@ -56,7 +57,7 @@ def test_a_shared_folder_keeps_the_earlier_set_beside_the_new(earlier_run):
     assert _tree(earlier_run) == sorted([RECORD, "fields.vtu", "mine.txt", "report.md",
                                          "result.json", "sub", "sub/new.png"])
     assert json.loads((earlier_run / RECORD).read_text())["files"] == [
-        "fields.vtu", "report.md", "result.json", "sub"]
+        "fields.vtu", "report.md", "result.json", "sub", "sub/new.png"]
 
 
 @pytest.mark.parametrize("owner", [OWNER, "python -m other run"])
@@ -79,7 +80,7 @@ def test_a_folder_of_someone_elses_files_is_refused_before_and_at_writing(tmp_pa
 def test_a_file_the_user_put_where_the_new_set_writes_is_not_replaced(earlier_run):
     (earlier_run / "curve.png").write_text("the user's figure")
     before = _tree(earlier_run)
-    with pytest.raises(InputError, match="curve.png would replace"):
+    with pytest.raises(InputError, match="would replace or remove curve.png, which"):
         _write(OWNER, earlier_run, ["result.json", "curve.png"])
     assert _tree(earlier_run) == before
     assert (earlier_run / "curve.png").read_text() == "the user's figure"
@@ -106,13 +107,58 @@ def test_a_failure_touches_nothing_and_leaves_no_staging(earlier_run, whole):
     assert (earlier_run / "result.json").read_text() == "earlier run"
 
 
-def test_what_a_killed_run_left_is_removed_and_not_counted_as_foreign(tmp_path):
+def test_what_a_killed_run_left_is_removed_and_a_running_ones_stays(tmp_path):
     out = tmp_path / "out"
-    killed = out / f"{STAGE_PREFIX}abc123"
-    killed.mkdir(parents=True)
-    (killed / "half.json").write_text("half")
+    killed, running = (out / f"{STAGE_PREFIX}{pid}-abc123" for pid in (2**31 - 2, os.getpid()))
+    for stage in (killed, running):
+        stage.mkdir(parents=True)
+        (stage / "half.json").write_text("half")
+    (out / f"{RECORD[:-5]}.x1y2.json").write_text("{")  # a record's write cut short
     _write(OWNER, out, ["result.json"])
-    assert _tree(out) == sorted([RECORD, "result.json"])
+    assert not killed.exists() and (running / "half.json").exists()
+    assert _entries_but_ours(out) == ["result.json"]
+
+
+def _entries_but_ours(folder):
+    return sorted(p.name for p in folder.iterdir() if not p.name.startswith(OURS_PREFIX))
+
+
+@pytest.mark.parametrize("files", [[".."], ["."], [""], "zz", ["/etc"], ["a/../.."], [RECORD]])
+def test_a_record_naming_what_is_not_its_own_is_no_record(tmp_path, files):
+    """A record listing '..', '.', '' or an absolute path, or a string instead of a list, is
+    not trusted: the folder counts as someone else's and is refused, nothing deleted."""
+    out = tmp_path / "out"
+    out.mkdir()
+    (tmp_path / "precious.txt").write_text("keep")
+    (out / "z").write_text("keep")
+    (out / RECORD).write_text(json.dumps({"written_by": OWNER, "files": files}))
+    with pytest.raises(InputError, match="did not write"):
+        _write(OWNER, out, ["result.json"])
+    assert (tmp_path / "precious.txt").read_text() == "keep" and (out / "z").exists()
+
+
+@pytest.mark.parametrize("whole", [True, False])
+def test_a_users_file_in_a_subfolder_of_the_output_is_not_deleted(earlier_run, whole):
+    """sub/ is the command's, replaced as a whole by a new run: a file the user put into it
+    makes the run refuse, naming it, and nothing changes."""
+    (earlier_run / "sub" / "notes.txt").write_text("mine")
+    before = _tree(earlier_run)
+    with pytest.raises(InputError, match="sub/notes.txt, which python -m tool run did not"):
+        _write(OWNER, earlier_run, ["sub/new.png", "result.json"], whole=whole)
+    assert _tree(earlier_run) == before
+
+
+def test_a_failed_set_removes_the_folders_it_made_and_no_more(tmp_path):
+    with pytest.raises(KeyboardInterrupt), staged_folder(tmp_path / "a" / "b" / "out",
+                                                         owner=OWNER):
+        raise KeyboardInterrupt
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_link_to_nothing_is_refused_up_front(tmp_path):
+    (tmp_path / "out").symlink_to(tmp_path / "gone")
+    with pytest.raises(InputError, match="--out: .* is a link to nothing"):
+        output_folder(tmp_path / "out", "--out", OWNER)
 
 
 def test_the_current_folder_can_be_the_output(tmp_path, monkeypatch):

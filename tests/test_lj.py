@@ -12,6 +12,7 @@ from fem_asperity.closed_forms.lj import (
     K_9_3,
     bradley_force,
     centre_deflection,
+    rigid_force,
     scaled_potential,
     scaled_traction,
     separation_from_gap,
@@ -101,3 +102,23 @@ def test_potential_is_the_integral_of_the_traction():
     slope = (scaled_potential(h + step) - scaled_potential(h - step)) / (2 * step)
     np.testing.assert_allclose(slope, -scaled_traction(h), rtol=1e-7, atol=1e-9)
     assert scaled_potential(1.0) == pytest.approx(-1.0)  # minus the work of adhesion
+
+
+def _sphere_by_quadrature(delta, rho):
+    """∫ p̄(δ̄ + h(r)) r dr over the exact sphere's lower half, h = ρ(1 − √(1 − r²/ρ))."""
+    def integrand(r):
+        h = rho * (1.0 - np.sqrt(1.0 - r * r / rho))
+        return 8.0 / 3.0 * ((delta + h) ** -9 - (delta + h) ** -3) * r
+
+    return quad(integrand, 0.0, np.sqrt(rho), limit=400, epsabs=0.0, epsrel=1e-11)[0]
+
+
+@pytest.mark.parametrize("delta", [1.0, 2.0, 50.0, 1e4])
+@pytest.mark.parametrize("rho", [30.0, 3333.0])
+def test_the_exact_spheres_rigid_force_is_its_traction_integrated(delta, rho):
+    assert rigid_force(delta, rho) == pytest.approx(_sphere_by_quadrature(delta, rho), rel=1e-5)
+
+
+def test_the_exact_spheres_rigid_force_tends_to_bradleys():
+    assert rigid_force(1.0, 1e8) == pytest.approx(bradley_force(1.0), rel=1e-7)
+    assert rigid_force(3.0) == bradley_force(3.0)

@@ -136,3 +136,23 @@ def test_out_writes_the_cantilever_figure(tmp_path):
     names = {p.name for p in write_all(result, tmp_path / "out")}
     assert {"cantilever.png", "curve.png", "result.json"} <= names
     assert (tmp_path / "out" / "cantilever.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_the_exact_sphere_on_a_soft_spring_lands_on_its_own_far_field():
+    """R/ε = 30: the jump-out flies to δ̄o ≈ 800 ≫ R/ε, where the exact sphere pulls far less
+    than Derjaguin's parabola; it lands where the spring balances that pull, the traction of
+    the sphere's lower half integrated by quadrature (an independent reference)."""
+    from scipy.integrate import quad
+
+    k, rho = 1e-3, 30.0
+    result = solve_curve(1.0, method="bem", accuracy="draft", spring_constant=k,
+                         radius_ratio=rho, error_estimate=False)
+    delta, p = result.retraction.delta[-1], result.retraction.p[-1]
+
+    def pull(r):
+        h = delta + rho * (1.0 - (1.0 - r * r / rho) ** 0.5)
+        return 8.0 / 3.0 * (h**-9 - h**-3) * r
+
+    assert delta > 10 * rho
+    assert p == pytest.approx(quad(pull, 0.0, rho**0.5, epsrel=1e-11)[0], rel=1e-6)
+    assert p == pytest.approx(k * (delta - result.z_jumps["z_jump_out"]), rel=1e-6)

@@ -3,6 +3,4 @@
 Entry point: `python -m validation all --out out/`.
 """
 
-from fem_asperity.plumbing.interrupt import quiet_while_loading
-
-quiet_while_loading()  # before numpy and scipy load: the slow part of a command's start
+import fem_asperity  # noqa: F401  first: its import quiets a Ctrl-C while the modules load

@@ -64,6 +64,26 @@ def bradley_force(delta):
     return float(force) if force.ndim == 0 else force
 
 
+def rigid_force(delta, radius_ratio=None):
+    """Force on a rigid sphere over a rigid flat at separation δ̄ (ε, > 0), in 2πRΔγ (< 0
+    attractive): Bradley's (`bradley_force`, Derjaguin's parabola) where `radius_ratio` is None,
+    else that of the exact sphere's lower half, as `path.surface.derjaguin_profile` gives it,
+    ρ = R/ε: ∫₀^ρ p̄(δ̄ + h)(1 − h/ρ) dh (r dr = (1 − h/ρ) dh on it), in closed form. It tends
+    to Bradley's as ρ → ∞ and falls off faster beyond δ̄ ~ ρ."""
+    if radius_ratio is None:
+        return bradley_force(delta)
+    d, rho = np.asarray(positive("delta", delta)), positive("radius_ratio", radius_ratio)
+
+    def pulled(s):  # ∫ p̄ ds, and ∫ s p̄ ds
+        return -(s**-8.0) / 3.0 + 4.0 / 3.0 * s**-2.0, 8.0 / 3.0 * (-(s**-7.0) / 7.0 + 1.0 / s)
+
+    with np.errstate(over="ignore"):
+        (f_near, g_near), (f_far, g_far) = pulled(d), pulled(d + rho)
+        force = (f_far - f_near) - (g_far - g_near - d * (f_far - f_near)) / rho
+    force = finite_result(force, lambda: f"the sphere's force at delta = {np.min(d):g}")
+    return float(force) if force.ndim == 0 else force
+
+
 def centre_deflection(x, *, mu):
     """Elastic deflection h̄o at r = 0 under the LJ traction of a rigid sphere at gap x̄o (eq. 4).
 

@@ -138,16 +138,22 @@ def _most_tensile(path):
 JUMP_CONTACT = 0.01
 
 
+def contact_index(path):
+    """Index of the first point of the approach `path` in contact: x̄o ≤ 1, or a jump's landing
+    with x̄o ≤ 1 + JUMP_CONTACT; None if there is none."""
+    landings = np.nonzero(np.diff(path.branch) != 0)[0] + 1
+    first = [*np.nonzero(path.x <= 1.0)[0][:1],
+             *[k for k in landings if path.x[k] <= 1.0 + JUMP_CONTACT][:1]]
+    return int(min(first)) if first else None
+
+
 def _initial_contact(path):
     """δ̄o where the centre gap first reaches 1 on the approach path (x̄o linear in δ̄o between
-    samples), or the jump's δ̄o if contact forms by the jump (it lands with x̄o ≤ 1 +
-    JUMP_CONTACT); None if it never forms."""
-    landings = np.nonzero(np.diff(path.branch) != 0)[0] + 1
-    touching = np.nonzero(path.x <= 1.0)[0]
-    landed = [k for k in landings if path.x[k] <= 1.0 + JUMP_CONTACT]
-    if touching.size == 0 and not landed:
+    samples), or the jump's δ̄o if contact forms by the jump (`contact_index`); None if it never
+    forms."""
+    k = contact_index(path)
+    if k is None:
         return None
-    k = int(min([*touching[:1], *landed[:1]]))
     if k == 0:
         return float(path.delta[0])
     if path.branch[k] != path.branch[k - 1]:

@@ -17,7 +17,7 @@ solved by Newton at the δ̄o interpolated in z̄.
 import numpy as np
 from scipy.optimize import brentq
 
-from ..closed_forms.lj import bradley_force
+from ..closed_forms.lj import rigid_force
 from ..plumbing.errors import ContinuationError
 from .curve import Jump, parabola_vertex
 from .whole_curve import COLUMNS, path_from_rows, point_row, state_at
@@ -72,19 +72,26 @@ def _landing(surface, traced, curve, z, stable, order, start, z_jump, k):
 
 def _far_landing(surface, traced, curve, z_jump, k):
     """The state a soft spring's jump-out lands on beyond the curve's far start (δ̄o = δ̄₀ there):
-    where the spring balances the LJ pull, P̄ = k̄(δ̄o − z̄), on the far-field force of a rigid
-    sphere (Bradley's; the solid's deflection is smaller there than at δ̄₀), the state solved by
-    Newton at that δ̄o from the state at δ̄₀. So no curve is traced out to 1/k̄. Its P̄ is
-    Bradley's: the traction grid, ending at a finite radius, under-counts the pull that far out
-    (by 0.8 % at δ̄o = 490 on the BEM's r = 100, `solver.solve.traction_tail`)."""
+    where the spring balances the LJ pull, P̄ = k̄(δ̄o − z̄), on the far-field force of the rigid
+    sphere (`lj.rigid_force`, of the surface's profile; the solid's deflection is smaller there
+    than at δ̄₀), the state solved by Newton at that δ̄o from the state at δ̄₀. So no curve is
+    traced out to 1/k̄. Its P̄ is the rigid sphere's: the traction grid, ending at a finite
+    radius, under-counts the pull that far out (by 0.8 % at δ̄o = 490 on the BEM's r = 100,
+    `solver.solve.traction_tail`). Where that under-count alone put the landing beyond δ̄₀ (the
+    balance on the rigid force lies short of it), it lands on the state at δ̄₀."""
     start = float(curve.delta[0])
-    delta = brentq(lambda d: d - bradley_force(d) / k - z_jump, start, z_jump, xtol=1e-12,
-                   rtol=1e-12)
+
+    def unbalanced(d):
+        return d - rigid_force(d, surface.radius_ratio) / k - z_jump
+
+    if unbalanced(start) >= 0.0:
+        return point_row(curve, 0, 0)
+    delta = brentq(unbalanced, start, z_jump, xtol=1e-12, rtol=1e-12)
     landed = state_at(surface, traced, 0, 0, 0.0, delta)
     if landed is None:
         raise ContinuationError(f"no state to land on at z = {z_jump:.6g} under the spring "
                                 f"(delta = {delta:.6g})")
-    return landed | {"p": bradley_force(delta)}
+    return landed | {"p": rigid_force(delta, surface.radius_ratio)}
 
 
 def _walk(surface, traced, curve, z, stable, order, k):

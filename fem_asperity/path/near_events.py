@@ -24,7 +24,7 @@ import numpy as np
 from ..plumbing.errors import ContinuationError
 from .branches import follow_branch
 from .continuation import Linearisation, correct
-from .curve import ESTIMATED, Jump
+from .curve import ESTIMATED, JUMP_CONTACT, Jump, contact_index
 
 #: Points of the curve traced again before and after each event, 3: the window then spans at
 #: least three turn limits either side, well beyond how far the event moves between the two
@@ -253,20 +253,20 @@ class _Near:
 
     def initial_contact(self, approach, jump_in, fine_in):
         """δ̄o where the centre gap first reaches 1 ε on the approach, on the finer
-        discretisation: the jump's if contact forms by the jump, else the state with x̄o = 1
+        discretisation: the jump's if contact forms by the jump (`curve.contact_index`: it lands
+        with x̄o ≤ 1 + JUMP_CONTACT), else the state with x̄o = 1
         exactly (`continuation.correct` with x̄o as the constraint) on its branch, from the
         first point with x̄o ≤ 1 of the branch traced from WINDOW points before; None if
         contact never forms. (The curve's own is interpolated between samples,
         `curve._initial_contact`: the estimate includes that error.)"""
-        touching = np.flatnonzero(approach.x <= 1.0)
-        if touching.size == 0:
+        i = contact_index(approach)
+        if i is None:
             return None
-        i = int(touching[0])
         if i > 0 and approach.branch[i] != approach.branch[i - 1]:
             if jump_in is None or approach.delta[i] != jump_in.delta or fine_in is None:
                 raise NotNear("contact forms by a jump the finer discretisation does not make")
             fine, fold = fine_in
-            if not fold["x"] > 1.0 >= fine.x_after:
+            if not (fold["x"] > 1.0 and fine.x_after <= 1.0 + JUMP_CONTACT):
                 raise NotNear("on the finer discretisation contact does not form by the jump")
             return fine.delta
         k = self.index(approach.delta[i], approach.p[i])

@@ -76,7 +76,7 @@ class SurfaceShape:
     a grid no longer built can still be placed, `grids.EdgeGrids.transplant`)."""
 
     def __init__(self, r_nodes, *, radius_ratio=None):
-        self.r_nodes = r_nodes
+        self.r_nodes, self.radius_ratio = r_nodes, radius_ratio
         self.derjaguin = radius_ratio is None
         self.node_profile = derjaguin_profile(r_nodes, radius_ratio)
 

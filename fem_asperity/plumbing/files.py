@@ -36,12 +36,22 @@ def atomic_path(path):
         raise
 
 
+#: Names of the package's own entries in an output folder: its record (and the record's
+#: temporary file while it is written) and its staging folders. They are never a user's.
+OURS_PREFIX = ".adhesion-"
 #: Prefix of the staging folders inside an output folder (and of a folder renamed aside while
-#: it is replaced), so that a later run finds and removes what a killed one left.
-STAGE_PREFIX = ".adhesion-stage-"
-#: The record an output folder keeps of the command that wrote it and of the files it wrote:
-#: a later run of that command replaces those and nothing else.
-RECORD = ".adhesion-output.json"
+#: it is replaced), followed by the writing process's id, so that a later run removes what a
+#: killed one left and leaves a running one's alone.
+STAGE_PREFIX = OURS_PREFIX + "stage-"
+#: The record an output folder keeps of the command that wrote it and of the files it wrote
+#: (paths relative to the folder, those in its subfolders too): a later run of that command
+#: replaces those and nothing else.
+RECORD = OURS_PREFIX + "output.json"
+
+
+def nearest_existing(path):
+    """`path` or its nearest ancestor that exists."""
+    return next(p for p in (path, *path.absolute().parents) if p.exists())
 
 
 def writable_folder(folder, option):
@@ -51,9 +61,11 @@ def writable_folder(folder, option):
     if str(folder).strip() == "":
         raise InputError(f"{option} needs a folder name; got an empty one")
     folder = Path(folder).expanduser()
+    if folder.is_symlink() and not folder.exists():
+        raise InputError(f"{option}: {folder} is a link to nothing")
     if folder.exists() and not folder.is_dir():
         raise InputError(f"{option} must be a folder; {folder} is a file")
-    existing = next(p for p in (folder, *folder.absolute().parents) if p.exists())
+    existing = nearest_existing(folder)
     if not existing.is_dir():
         raise InputError(f"{option}: cannot create {folder}: {existing} is a file")
     try:
@@ -63,23 +75,46 @@ def writable_folder(folder, option):
     return folder
 
 
+def _relative(name):
+    """Whether `name` (from a record) is a path inside the folder that a command may have
+    written: relative, no '.', '..' or empty part, not one of the package's own entries."""
+    if not isinstance(name, str) or not name or name.startswith("/"):
+        return False
+    parts = name.split("/")
+    return all(part not in ("", ".", "..") for part in parts) and not parts[0].startswith(
+        OURS_PREFIX)
+
+
 def _ours(folder, owner):
-    """The entries of `folder` that `owner` wrote there (its record's list), or None where the
-    folder holds no record of `owner`."""
+    """The paths in `folder` that `owner` wrote there (its record's list, relative, '/'-
+    separated), or None where the folder holds no valid record of `owner`."""
     try:
         record = json.loads((folder / RECORD).read_text())
     except (OSError, ValueError):
         return None
     if not isinstance(record, dict) or record.get("written_by") != owner:
         return None
-    return {name for name in record.get("files", ()) if isinstance(name, str) and "/" not in name}
+    files = record.get("files")
+    if not isinstance(files, list) or not all(_relative(name) for name in files):
+        return None
+    return set(files)
 
 
 def _entries(folder):
-    """The names in `folder`, staging leftovers left out."""
+    """The names in `folder`, the package's own entries left out."""
     if not folder.is_dir():
         return set()
-    return {p.name for p in folder.iterdir() if not p.name.startswith(STAGE_PREFIX)}
+    return {p.name for p in folder.iterdir() if not p.name.startswith(OURS_PREFIX)}
+
+
+def _tops(paths):
+    """The top-level names of relative '/'-separated `paths`."""
+    return {p.split("/")[0] for p in paths}
+
+
+def _tree(folder):
+    """Every path under `folder`, relative and '/'-separated (links not followed)."""
+    return {p.relative_to(folder).as_posix() for p in folder.rglob("*")}
 
 
 def output_folder(folder, option, owner):
@@ -101,7 +136,7 @@ def _replace(source, target, folder):
     `folder`, under the staging prefix) first and removed after: a rename cannot replace a
     folder that has files."""
     if target.is_dir() and not target.is_symlink():
-        aside = Path(tempfile.mkdtemp(dir=folder, prefix=STAGE_PREFIX)) / target.name
+        aside = _stage(folder) / target.name
         os.replace(target, aside)
         os.replace(source, target)
         shutil.rmtree(aside.parent, ignore_errors=True)
@@ -116,11 +151,68 @@ def _remove(path):
         path.unlink()
 
 
-def _write_record(folder, owner, names):
+def _write_record(folder, owner, paths):
     write_atomic(folder / RECORD, json.dumps(
-        {"written_by": owner, "files": sorted(names),
+        {"written_by": owner, "files": sorted(paths),
          "about": "the files the command wrote here; a later run of it replaces only these"},
         indent=1) + "\n")
+
+
+def _stage(folder):
+    """A new staging folder in `folder`, named after this process."""
+    return Path(tempfile.mkdtemp(dir=folder, prefix=f"{STAGE_PREFIX}{os.getpid()}-"))
+
+
+def _remove_leftovers(folder):
+    """Remove the staging folders in `folder` whose process has ended (killed mid-run)."""
+    for stage in folder.glob(f"{STAGE_PREFIX}*"):
+        pid = stage.name[len(STAGE_PREFIX):].split("-")[0]
+        if pid.isdigit() and not _alive(int(pid)):
+            shutil.rmtree(stage, ignore_errors=True)
+
+
+def _alive(pid):
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # another user's process
+        return True
+    return True
+
+
+@contextlib.contextmanager
+def _locked(folder):
+    """Hold an exclusive lock on `folder` (flock on the folder itself) inside the block, so that
+    two runs writing into one folder at once move their sets and records one after the other."""
+    try:
+        import fcntl
+    except ImportError:  # no flock (Windows): runs into one folder at once are not ordered
+        yield
+        return
+    fd = os.open(folder, os.O_RDONLY)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)
+        yield
+    finally:
+        os.close(fd)
+
+
+def _check_replaceable(folder, owner, earlier, new, whole):
+    """Refuse (`InputError`) a set `new` (relative paths) that would replace or remove anything
+    in `folder` that `owner` did not write: a top-level name of the set that it did not write,
+    or, inside a subfolder of its earlier set that is replaced or removed as a whole, a path
+    that is not in `earlier`."""
+    new_top, earlier_top = _tops(new), _tops(earlier)
+    taken = sorted((new_top & _entries(folder)) - earlier_top)
+    gone = (new_top | (earlier_top if whole else set())) & earlier_top
+    taken += sorted(f"{name}/{path}" for name in gone if (folder / name).is_dir()
+                    and not (folder / name).is_symlink()
+                    for path in _tree(folder / name) if f"{name}/{path}" not in earlier)
+    if taken:
+        shown = ", ".join(taken[:3]) + (", ..." if len(taken) > 3 else "")
+        raise InputError(f"{folder}: the output would replace or remove {shown}, which "
+                         f"{owner} did not write; move it away, nothing was written")
 
 
 @contextlib.contextmanager
@@ -129,38 +221,40 @@ def staged_folder(folder, *, owner, whole=True):
     moved into `folder`, on failure (or Ctrl-C) nothing there is touched.
 
     `folder` must be new, empty or hold `owner`'s earlier output (`output_folder`); entries it
-    did not write stay, and a new file that would replace one of them is refused. whole=True:
-    the files of `owner`'s earlier set that the new set lacks are removed (a folder owned by
-    one result never mixes two runs); whole=False: they stay (commands sharing a folder, each
-    writing part). The record lists every file `owner` wrote at each step of the move, so a
-    run killed during it leaves nothing unrecognised. Staging folders a killed run left in
+    did not write stay, and a set that would replace or remove one of them is refused
+    (`_check_replaceable`). whole=True: the files of `owner`'s earlier set that the new set
+    lacks are removed (a folder owned by one result never mixes two runs); whole=False: they
+    stay (commands sharing a folder, each writing part). The record lists every file `owner`
+    wrote at each step of the move, so a run killed during it leaves nothing unrecognised; runs
+    into one folder at once move one after the other. Staging folders a killed run left in
     `folder` are removed first."""
     folder = output_folder(folder, "the output folder", owner)
-    created = not folder.exists()
+    made_from = nearest_existing(folder)  # what a failure removes again, up to here
     folder.mkdir(parents=True, exist_ok=True)
-    for leftover in folder.glob(f"{STAGE_PREFIX}*"):
-        shutil.rmtree(leftover, ignore_errors=True)
-    stage = Path(tempfile.mkdtemp(dir=folder, prefix=STAGE_PREFIX))
+    _remove_leftovers(folder)
+    stage = _stage(folder)
     os.chmod(stage, 0o777 & ~_umask())  # mkdtemp's 0700 would become a folder's mode
     try:
         yield stage
-        earlier = _ours(folder, owner) or set()
-        new = {p.name for p in stage.iterdir()}
-        taken = sorted((new & _entries(folder)) - earlier - {RECORD})
-        if taken:
-            raise InputError(f"{folder}: {', '.join(taken)} would replace files that {owner} "
-                             "did not write; nothing was written")
-        _write_record(folder, owner, earlier | new)  # covers both sets while they are moved
-        for name in sorted(new):
-            _replace(stage / name, folder / name, folder)
-        if whole:
-            for name in earlier - new:
-                _remove(folder / name)
-        _write_record(folder, owner, new if whole else (earlier & _entries(folder)) | new)
+        with _locked(folder):
+            earlier = _ours(folder, owner) or set()
+            new = _tree(stage)
+            _check_replaceable(folder, owner, earlier, new, whole)
+            _write_record(folder, owner, earlier | new)  # covers both sets while they move
+            for name in sorted(p.name for p in stage.iterdir()):
+                _replace(stage / name, folder / name, folder)
+            if whole:
+                for name in _tops(earlier) - _tops(new):
+                    _remove(folder / name)
+            kept = set() if whole else {p for p in earlier if (folder / p).exists()
+                                         or (folder / p).is_symlink()}
+            _write_record(folder, owner, new | kept)
     except BaseException:
         shutil.rmtree(stage, ignore_errors=True)
-        if created and not any(folder.iterdir()):
-            folder.rmdir()
+        for made in (folder.absolute(), *folder.absolute().parents):
+            if made == made_from.absolute() or any(made.iterdir()):
+                break
+            made.rmdir()
         raise
     shutil.rmtree(stage, ignore_errors=True)
 

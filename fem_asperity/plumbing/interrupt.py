@@ -7,20 +7,31 @@ import sys
 COMMANDS = ("fem_asperity", "gw", "validation")
 
 
+def _command():
+    """The package `python -m` is starting, while it imports it (sys.argv[0] is '-m' until the
+    module is found), else None."""
+    if sys.argv[:1] != ["-m"]:
+        return None
+    argv = list(getattr(sys, "orig_argv", ()))
+    for i, arg in enumerate(argv[1:], 1):
+        if arg == "-m":
+            return argv[i + 1] if i + 1 < len(argv) else None
+        if arg.startswith("-m"):
+            return arg[2:]
+    return None
+
+
 def quiet_while_loading():
-    """If this process is `python -m` one of COMMANDS (`sys.orig_argv`), report an uncaught
+    """If this process is `python -m` one of COMMANDS, starting, report an uncaught
     KeyboardInterrupt in one line on stderr (Python still exits as interrupted); any other
     process's `sys.excepthook` is left alone: a library does not change its host's."""
-    argv = list(getattr(sys, "orig_argv", ()))
-    if "-m" not in argv[:-1] or argv[argv.index("-m") + 1] not in COMMANDS:
+    command = _command()
+    if command not in COMMANDS or getattr(sys.excepthook, "quiets_interrupts", False):
         return
-    if getattr(sys.excepthook, "quiets_interrupts", False):  # gw and validation load this too
-        return
-    prog, previous = f"python -m {argv[argv.index('-m') + 1]}", sys.excepthook
 
-    def hook(kind, value, traceback):
+    def hook(kind, value, traceback, previous=sys.excepthook):
         if issubclass(kind, KeyboardInterrupt):
-            print(f"{prog}: interrupted", file=sys.stderr)
+            print(f"python -m {command}: interrupted", file=sys.stderr)
         else:
             previous(kind, value, traceback)
 

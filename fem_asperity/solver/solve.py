@@ -47,9 +47,9 @@ MU_ONSET_HI, REFINEMENTS = 0.6982, 2
 
 #: Tabor parameters a curve is solved for, both ends included: from the rigid limit (μ = 1e-3
 #: solves with both methods; 1e-300 overflowed) to the largest μ whose curve finishes at
-#: `draft` within minutes on two cores (benchmarks/large_mu.py --large times μ = 50; μ = 100
-#: did not finish within minutes: the cohesive zone narrows like μ^-1.5 and its grids grow);
-#: above it JKR answers (TOO_STIFF). test_cli's bad-input test pins both ends.
+#: `draft` within minutes on two cores (benchmarks/results/extremes.md; the cohesive zone
+#: narrows like μ^-1.5 and its grids grow, so μ = 100 costs far more); above it JKR answers
+#: (TOO_STIFF). test_cli's bad-input test and test_bem_curve pin both ends.
 MU_RANGE = (1e-3, 50.0)
 #: Why a μ above MU_RANGE is refused, and what answers there.
 TOO_STIFF = ("above it the cohesive zone is too narrow for a solve to finish within minutes; "
@@ -64,24 +64,24 @@ TOO_STIFF = ("above it the cohesive zone is too narrow for a solve to finish wit
 #: with Δγ = 0.05 J/m², ε = 0.3 nm; benchmarks/extremes.py times it). test_cli pins the end.
 SPRING_RANGE = (1e-9, 1e12)
 #: Why a softer spring is refused.
-SOFT_SPRING = ("the approach starts outside the spring's jump-in, about (8/(3k))^(1/3) eps out, "
-               "and a softer spring than any cantilever would cost more points than a curve "
-               "takes")
+SOFT_SPRING = ("the approach starts outside the spring's jump-in, twice (8/(3k))^(1/3) eps "
+               "out, and a spring softer than any cantilever would cost more points than a "
+               "curve takes")
 #: The approach under a spring starts this many times farther out than the rigid sphere's
 #: jump-in under it, (8/(3k̄))^(1/3): the solid's own pull moves that fold out, by 1.5 % at
 #: μ = 6 (k̄ = 1e-3, BEM draft). test_load_line.py::test_a_soft_spring_lands_beyond_the_start.
 SPRING_FOLD_MARGIN = 2.0
 #: Largest μ whose whole curve (the unstable branches, or a spring's load-line control) is
 #: traced: on one uniform grid, which must resolve the cohesive zone everywhere, its cost
-#: climbs steeply with μ (BEM draft: μ = 7 did not finish within minutes; benchmarks/extremes.py
-#: times μ = 5 and 6). test_cli's bad-input test pins it.
+#: climbs steeply with μ (benchmarks/results/extremes.md times μ = 5 and 6; μ = 7 costs far
+#: more). test_cli's bad-input test pins it.
 WHOLE_CURVE_MU_MAX = 6.0
 #: Progress shown until a solve and its error estimate have both ended.
 ALMOST_DONE = 0.99
 #: Share of the progress bar given to the curve where its estimate is traced after it, near
 #: each event (`_estimated_near_events`; the rest moves as the events are found): that
-#: estimate costs up to about as much as the curve (docs/accuracy-study.md), so the bar held
-#: at 99 % for a third of a run at μ = 50. test_bem_curve.py::test_progress_rises_to_one_at_
+#: estimate costs up to about as much as the curve (docs/accuracy-study.md), and a bar that
+#: waited at 99 % for it looked stalled. test_bem_curve.py::test_progress_rises_to_one_at_
 #: the_end_only.
 CURVE_SHARE = 0.6
 #: The estimated forces: on grids that follow the edge their estimate adds the curve's

@@ -24,7 +24,7 @@ import numpy as np
 
 from ..path.curve import Curve, Events, Jump, curve_from_columns
 from ..plumbing.errors import InputError
-from ..plumbing.files import writable_folder, write_atomic
+from ..plumbing.files import nearest_existing, writable_folder, write_atomic
 from ..plumbing.revision import solver_revision
 from ..solids.fe import Solid
 from ..solver.presets import METHODS, PRESETS
@@ -83,8 +83,7 @@ def _events_from_dict(data):
 def _store_folder(folder):
     """Refuse (`InputError`) the store's `folder` where a file stands in its place or in a
     parent's: reading under it fails as if every entry were corrupt."""
-    folder = Path(folder)
-    existing = next(p for p in (folder, *folder.absolute().parents) if p.exists())
+    existing = nearest_existing(Path(folder))
     if not existing.is_dir():
         raise InputError(f"{STORE} must be a folder; {existing} is a file")
 

@@ -336,11 +336,16 @@ def _free_locks(pending, folders):
     """{μ: its store lock} for the first μ of `pending` (up to LOCKS_AT_ONCE) whose lock no
     other process holds."""
     locks = {}
-    for mu in pending:
-        if len(locks) == LOCKS_AT_ONCE:
-            break
-        if (lock := lock_entry(folders[mu], wait=False)) is not None:
-            locks[mu] = lock
+    try:
+        for mu in pending:
+            if len(locks) == LOCKS_AT_ONCE:
+                break
+            if (lock := lock_entry(folders[mu], wait=False)) is not None:
+                locks[mu] = lock
+    except BaseException:  # e.g. too many open files, Ctrl-C: none of them stays taken
+        for lock in locks.values():
+            unlock_entry(lock)
+        raise
     return locks
 
 
@@ -353,7 +358,7 @@ def _unclaimed(todo, folders, run):
     elsewhere is left to its holder, waited for when nothing else is left, then read, or solved
     here if the holder stored nothing (it failed or was killed). This waits only while it holds
     no lock, so two sweeps never wait for each other."""
-    pending, locks = list(todo), {}
+    pending, locks, batch = list(todo), {}, None
     try:
         while pending:
             locks = _free_locks(pending, folders)
@@ -365,11 +370,14 @@ def _unclaimed(todo, folders, run):
                     unlock_entry(locks.pop(mu))
                     pending.remove(mu)
                     yield mu, None
-            for mu, result in run(list(locks)) if locks else ():
+            batch = run(list(locks)) if locks else None
+            for mu, result in batch or ():
                 yield mu, result
                 unlock_entry(locks.pop(mu))
                 pending.remove(mu)
-    finally:  # an error or Ctrl-C: what is stored stays stored, the rest is free again
+    finally:  # an error or Ctrl-C: what is stored stays stored, the rest is free again once
+        if batch is not None:  # the workers solving it have stopped (`run` is a generator)
+            batch.close()
         for lock in locks.values():
             unlock_entry(lock)
 
