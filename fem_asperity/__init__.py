@@ -12,9 +12,9 @@ store, sweeps, refit); see docs/ARCHITECTURE.md.
 
 from importlib import import_module
 
-from .plumbing.interrupt import quiet_while_loading
+from .plumbing.interrupt import hold_while_loading
 
-quiet_while_loading()  # before numpy and scipy load: the slow part of a command's start
+hold_while_loading()  # before numpy and scipy load: the slow part of a command's start
 
 from .closed_forms.laws import PAPER_LAWS, AsperityLaws, LawEvents  # noqa: E402
 from .closed_forms.scales import Scales, effective_modulus, tabor_parameter  # noqa: E402

@@ -506,15 +506,46 @@ def test_a_range_is_refused_in_the_users_units_and_says_why(args, says):
 @pytest.mark.parametrize("package, args", [("fem_asperity", ["laws", "--mu", "1"]),
                                            ("gw", ["fmax", "--mu", "1", "--zeta", "1"])])
 def test_ctrl_c_while_the_modules_load_ends_in_one_line(package, args):
-    """Whenever the Ctrl-C comes, from the first tenth of a second on, the user sees one line
-    at most (numpy and scipy load in the first half second), never a traceback."""
+    """Whenever the Ctrl-C comes while numpy and scipy load (the first half second), the user
+    sees one line at most, never a traceback: it is held until they have loaded. (In the first
+    few hundredths Python itself is still finding the package: nothing of it runs yet.)"""
     import signal
     import time
 
-    for delay in (0.05, 0.15, 0.3):
+    for delay in (0.15, 0.3, 0.5):
         run = subprocess.Popen([sys.executable, "-m", package, *args], stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, text=True)
         time.sleep(delay)
         run.send_signal(signal.SIGINT)
         _, err = run.communicate(timeout=60)
         assert "Traceback" not in err and len(err.splitlines()) <= 1, (delay, err)
+
+
+def test_an_import_a_ctrl_c_cut_short_counts_as_interrupted_and_a_second_one_is_not_held(
+        monkeypatch):
+    """A C extension cut short raises ImportError from the KeyboardInterrupt: run() reports it
+    as interrupted (exit 130). While Ctrl-C is held, a second one interrupts at once."""
+    import signal
+
+    from fem_asperity.plumbing import interrupt
+    from fem_asperity.plumbing.cli import run
+
+    def cut_short(_argv):
+        try:
+            raise KeyboardInterrupt
+        except KeyboardInterrupt as exc:
+            raise ImportError("initialization failed") from exc
+
+    assert run(cut_short, "prog") == 130
+    monkeypatch.setattr(interrupt, "_held", [])
+    monkeypatch.setattr(sys, "argv", ["-m"])
+    monkeypatch.setattr(sys, "orig_argv", ["python", "-m", "gw", "fmax"])
+    interrupt.hold_while_loading()
+    try:
+        assert signal.getsignal(signal.SIGINT) is interrupt._hold
+        interrupt._hold(signal.SIGINT, None)  # held
+        with pytest.raises(KeyboardInterrupt):
+            interrupt._hold(signal.SIGINT, None)
+    finally:
+        assert interrupt.released()
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler

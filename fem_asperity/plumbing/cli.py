@@ -9,6 +9,7 @@ import sys
 import time
 import warnings
 
+from . import interrupt
 from .errors import ContinuationError, InputError
 from .version import __version__
 
@@ -36,12 +37,14 @@ def _warn_one_line(message, *_args, **_kwargs):
 
 def run(main, prog, argv=None):
     """Call `main(argv)`: warnings print as one line, an `InputError` as one line + exit code 2,
-    Ctrl-C as one line + exit code 130,
+    Ctrl-C (also one held while the modules loaded, `interrupt`) as one line + exit code 130,
     an `OSError` (e.g. an output folder that cannot be written) or a `ContinuationError` (a
     curve the solver could not follow) as one line + exit code 1."""
     with warnings.catch_warnings():
         warnings.showwarning = _warn_one_line
         try:
+            if interrupt.released():
+                raise KeyboardInterrupt
             return main(argv)
         except InputError as exc:
             print(f"{prog}: error: {exc}", file=sys.stderr)
@@ -55,6 +58,11 @@ def run(main, prog, argv=None):
         except (OSError, ContinuationError) as exc:
             print(f"{prog}: error: {exc}", file=sys.stderr)
             return 1
+        except Exception as exc:
+            if not interrupt.interrupted(exc):  # an import that a Ctrl-C cut short
+                raise
+            print(f"{prog}: interrupted", file=sys.stderr)
+            return 130
 
 
 def dump_json(obj):

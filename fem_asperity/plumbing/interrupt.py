@@ -1,10 +1,14 @@
-"""A Ctrl-C while a command line is still loading its modules ends it in one line, as a Ctrl-C
-later does (`cli.run`), not in a traceback through the imports."""
+"""A Ctrl-C while a command line is still loading its modules is held until they have loaded,
+then ends the command in one line (`cli.run`), as a Ctrl-C later does: an import cut short
+leaves a traceback through the imports, or a C extension's half-initialised module."""
 
+import signal
 import sys
 
-#: The packages whose `python -m` command lines this quiets.
+#: The packages whose `python -m` command lines this holds.
 COMMANDS = ("fem_asperity", "gw", "validation")
+
+_held = []  # the Ctrl-Cs that came while the modules loaded
 
 
 def _command():
@@ -21,19 +25,33 @@ def _command():
     return None
 
 
-def quiet_while_loading():
-    """If this process is `python -m` one of COMMANDS, starting, report an uncaught
-    KeyboardInterrupt in one line on stderr (Python still exits as interrupted); any other
-    process's `sys.excepthook` is left alone: a library does not change its host's."""
-    command = _command()
-    if command not in COMMANDS or getattr(sys.excepthook, "quiets_interrupts", False):
-        return
+def _hold(signum, _frame):
+    """The first Ctrl-C is held; a second one (the loading hangs?) interrupts at once."""
+    if _held:
+        raise KeyboardInterrupt
+    _held.append(signum)
 
-    def hook(kind, value, traceback, previous=sys.excepthook):
-        if issubclass(kind, KeyboardInterrupt):
-            print(f"python -m {command}: interrupted", file=sys.stderr)
-        else:
-            previous(kind, value, traceback)
 
-    hook.quiets_interrupts = True
-    sys.excepthook = hook
+def hold_while_loading():
+    """If this process is `python -m` one of COMMANDS, starting, hold Ctrl-C (SIGINT) until
+    `released`; any other process's handler is left alone: a library does not change its
+    host's."""
+    if _command() in COMMANDS and signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+        signal.signal(signal.SIGINT, _hold)
+
+
+def released():
+    """Give Ctrl-C back its usual KeyboardInterrupt; whether one came while it was held."""
+    if signal.getsignal(signal.SIGINT) is _hold:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+    return bool(_held)
+
+
+def interrupted(error):
+    """Whether `error` is a KeyboardInterrupt or was raised by one (an import that a Ctrl-C cut
+    short raises ImportError from it)."""
+    while error is not None:
+        if isinstance(error, KeyboardInterrupt):
+            return True
+        error = error.__cause__ or error.__context__
+    return False
