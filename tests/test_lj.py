@@ -116,9 +116,10 @@ def _sphere_by_quadrature(delta, rho):
 @pytest.mark.parametrize("delta", [1.0, 2.0, 50.0, 1e4])
 @pytest.mark.parametrize("rho", [30.0, 3333.0])
 def test_the_exact_spheres_rigid_force_is_its_traction_integrated(delta, rho):
-    assert rigid_force(delta, rho) == pytest.approx(_sphere_by_quadrature(delta, rho), rel=1e-5)
+    expected = _sphere_by_quadrature(delta, rho)
+    assert rigid_force(delta, radius_ratio=rho) == pytest.approx(expected, rel=1e-5)
 
 
 def test_the_exact_spheres_rigid_force_tends_to_bradleys():
-    assert rigid_force(1.0, 1e8) == pytest.approx(bradley_force(1.0), rel=1e-7)
+    assert rigid_force(1.0, radius_ratio=1e8) == pytest.approx(bradley_force(1.0), rel=1e-7)
     assert rigid_force(3.0) == bradley_force(3.0)

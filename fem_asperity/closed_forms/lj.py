@@ -64,7 +64,7 @@ def bradley_force(delta):
     return float(force) if force.ndim == 0 else force
 
 
-def rigid_force(delta, radius_ratio=None):
+def rigid_force(delta, *, radius_ratio=None):
     """Force on a rigid sphere over a rigid flat at separation δ̄ (ε, > 0), in 2πRΔγ (< 0
     attractive): Bradley's (`bradley_force`, Derjaguin's parabola) where `radius_ratio` is None,
     else that of the exact sphere's lower half, as `path.surface.derjaguin_profile` gives it,

@@ -82,7 +82,7 @@ def _far_landing(surface, traced, curve, z_jump, k):
     start = float(curve.delta[0])
 
     def unbalanced(d):
-        return d - rigid_force(d, surface.radius_ratio) / k - z_jump
+        return d - rigid_force(d, radius_ratio=surface.radius_ratio) / k - z_jump
 
     if unbalanced(start) >= 0.0:
         return point_row(curve, 0, 0)
@@ -91,7 +91,7 @@ def _far_landing(surface, traced, curve, z_jump, k):
     if landed is None:
         raise ContinuationError(f"no state to land on at z = {z_jump:.6g} under the spring "
                                 f"(delta = {delta:.6g})")
-    return landed | {"p": rigid_force(delta, surface.radius_ratio)}
+    return landed | {"p": rigid_force(delta, radius_ratio=surface.radius_ratio)}
 
 
 def _walk(surface, traced, curve, z, stable, order, k):
