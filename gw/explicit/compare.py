@@ -1,0 +1,185 @@
+"""GW against the surface it idealises: the same summits as GW's integral (eqs. 22-28), as a
+sum over the actual summits, as interacting asperities, and as the whole surface solved.
+
+A "GW made explicit" surface (`explicit_caps`) is caps of one radius R at Gaussian heights
+(σ_s = σ, ω = 1) on random positions of density η: everything but the interaction is GW's by
+construction, so the models differ by what each leaves out:
+
+- `gw_paper`, `gw_solved`: GW's integral over the Gaussian with the paper's law or the solved
+  one (no interaction; the Gaussian, not these summits);
+- `gw_sum`: the solved law summed over these summits (their actual heights; no interaction);
+- `interacting`: the same summits coupled by the elastic far field (`interacting`);
+- `whole`: the map solved whole (`whole`): the reference.
+
+All in GW's units: F̄ = F/(2πRΔγ N) (N summits on the map: ηA₀ = N; a cap under another is
+no summit and is left out of the sums, `visible`), d̃ = d/σ from the mean
+height of the Gaussian the summits were drawn from (the map's datum, z = 0).
+"""
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from fem_asperity.plumbing.checks import in_range, positive
+from fem_asperity.plumbing.errors import InputError
+
+from ..integrate import strength, totals
+from ..laws import PaperLaw
+from ..surface import RoughSurface
+from .interacting import AsperityLaw, Interacting, coupling
+from .topography import gaussian_caps
+from .whole import Adhesion, most_tensile, solve_whole
+
+#: The physical scale of the explicit surfaces: F̄, d̃ and the jumps depend on μ, ζ, σRη and
+#: the pixel in √(Rε) only, so these fix nothing but the SI numbers in the files.
+EPS, DGAMMA, RADIUS_OVER_EPS = 0.3e-9, 0.05, 1000.0
+#: Models, cheapest first.
+MODELS = ("gw_paper", "gw_solved", "gw_sum", "interacting", "whole")
+#: GW "holds" where its F̄max is within this fraction of the whole surface's.
+HOLDS = 0.10
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A GW surface made explicit: Tabor parameter `mu`, ζ = σ/ε (`zeta`), σRη
+    (`sigma_r_eta`), `summits` (how many), `pixel` (in √(Rε)), `seed`, `periodic`."""
+
+    mu: float
+    zeta: float
+    sigma_r_eta: float
+    summits: int = 40
+    pixel: float = 0.2
+    seed: int = 0
+    periodic: bool = True
+
+    def __post_init__(self):
+        in_range("mu", self.mu, 0.01, 10.0)
+        in_range("zeta", self.zeta, 0.01, 1e3)
+        in_range("sigma_r_eta", self.sigma_r_eta, 1e-4, 10.0)
+        in_range("summits", self.summits, 1, 10_000)
+        positive("pixel", self.pixel)
+
+    @property
+    def radius(self):
+        return RADIUS_OVER_EPS * EPS
+
+    @property
+    def unit(self):
+        """√(Rε), m."""
+        return np.sqrt(self.radius * EPS)
+
+    @property
+    def adhesion(self):
+        """E* for μ: μ³ = RΔγ²/(E*²ε³)."""
+        return Adhesion(np.sqrt(self.radius * DGAMMA**2 / (EPS**3 * self.mu**3)), DGAMMA, EPS)
+
+    def surface(self):
+        """(Topography, Caps): η = σRη/(σR), the map L = √(N/η) wide."""
+        sigma = self.zeta * EPS
+        density = self.sigma_r_eta / (sigma * self.radius)
+        side = np.sqrt(self.summits / density)
+        n = int(np.ceil(side / (self.pixel * self.unit)))
+        if n > 2048:
+            raise InputError(f"the map would need {n} x {n} pixels (sigma_r_eta = "
+                             f"{self.sigma_r_eta:g} spreads {self.summits} summits that far): "
+                             f"use fewer summits or a larger pixel")
+        pixel = side / n
+        return gaussian_caps(n=n, pixel=pixel, radius=self.radius, sigma=sigma,
+                             density=self.summits / side**2, seed=self.seed,
+                             periodic=self.periodic)
+
+
+@dataclass(frozen=True)
+class ModelCurve:
+    """One model on one surface: `d` (d̃), `approach` and `retraction` (F̄, < 0 tensile; the
+    retraction None where the model has none), `f_max` (F̄max > 0, on approach), `d_at_max`
+    (d̃), `f_off` (the most tensile F̄ on retraction, > 0), `jumps` (in, out), `seconds`."""
+
+    d: np.ndarray
+    approach: np.ndarray
+    retraction: np.ndarray | None
+    f_max: float
+    d_at_max: float
+    f_off: float | None
+    jumps: tuple
+    seconds: float
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """Every model on one `scene`: `models` (name → ModelCurve), the whole surface's
+    `estimate` of F̄max, `errors` (name → F̄max/F̄max(whole) − 1) and `holds` (name → within
+    HOLDS, counting the estimate)."""
+
+    scene: Scene
+    models: dict
+    estimate: float
+    errors: dict
+    holds: dict
+
+
+def compare(scene, *, accuracy="default", law=None, progress=None):
+    """Every model of MODELS on `scene` → `Comparison`. `law`: the `AsperityLaw` at scene.mu
+    (solved or read from the store when None)."""
+    law = law or AsperityLaw.solved(scene.mu)
+    topography, caps = scene.surface()
+    shown = visible(caps, topography.size, scene.periodic)
+    count, sigma = int(shown.sum()), scene.zeta
+    started = time.perf_counter()
+    whole = solve_whole(topography, scene.adhesion, accuracy=accuracy, progress=progress)
+    d_eps = whole.approach.d / EPS
+    per_summit = 2 * np.pi * scene.radius * DGAMMA * count
+    models = {"whole": _curve(d_eps / sigma, whole.approach.force / per_summit,
+                              whole.retraction.force[::-1] / per_summit,
+                              (sum(j.kind == "in" for j in whole.jumps),
+                               sum(j.kind == "out" for j in whole.jumps)),
+                              time.perf_counter() - started)}
+    heights = caps.z[shown] / EPS
+    pixel = topography.pixel / scene.unit
+    rows = np.round(caps.x[shown] / topography.pixel).astype(int) % topography.shape[0]
+    cols = np.round(caps.y[shown] / topography.pixel).astype(int) % topography.shape[1]
+    for name, scale in (("gw_sum", 0.0), ("interacting", 1.0)):
+        started = time.perf_counter()
+        k = scale * coupling(rows, cols, shape=topography.shape, pixel=pixel, mu=scene.mu,
+                             periodic=scene.periodic)
+        model = Interacting(heights, k, law)
+        up, attached, delta = model.follow(d_eps)
+        down, _, _ = model.follow(d_eps[::-1], attached=attached, delta=delta)
+        jumps = (sum(j[0] == "in" for j in up.jumps + down.jumps),
+                 sum(j[0] == "out" for j in up.jumps + down.jumps))
+        models[name] = _curve(d_eps / sigma, up.force / count, down.force[::-1] / count, jumps,
+                              time.perf_counter() - started)
+    surface = RoughSurface(zeta=scene.zeta, omega=1.0)
+    for name, gw_law in (("gw_paper", PaperLaw(scene.mu)), ("gw_solved", law.approach)):
+        started = time.perf_counter()
+        best = strength(gw_law, surface)
+        f = totals(gw_law, surface, d_eps / sigma)[0]
+        models[name] = ModelCurve(d_eps / sigma, f, None, best.f_max, best.d_at_max, None,
+                                  (0, 0), time.perf_counter() - started)
+    reference = models["whole"].f_max
+    estimate = whole.error_estimate["force_max"] / per_summit
+    errors = {name: models[name].f_max / reference - 1.0 for name in MODELS}
+    holds = {name: abs(models[name].f_max - reference) <= HOLDS * reference + estimate
+             for name in MODELS}
+    return Comparison(scene, {name: models[name] for name in MODELS}, estimate, errors, holds)
+
+
+def visible(caps, size, periodic):
+    """Which caps have their apex on the map (not under another cap): z_i ≥ z_j − r_ij²/2R
+    for every j (nearest periodic images if `periodic`; `size` (Lx, Ly), m). A covered cap is
+    no summit: the whole surface never sees it, so neither do the sums."""
+    dx = caps.x[:, None] - caps.x[None, :]
+    dy = caps.y[:, None] - caps.y[None, :]
+    if periodic:
+        dx -= size[0] * np.round(dx / size[0])
+        dy -= size[1] * np.round(dy / size[1])
+    above = caps.z[None, :] - (dx**2 + dy**2) / (2 * caps.radius) - caps.z[:, None]
+    np.fill_diagonal(above, -np.inf)
+    return above.max(axis=1) < 0.0
+
+
+def _curve(d, approach, retraction, jumps, seconds):
+    f_max, d_max, _ = most_tensile(d, approach)
+    return ModelCurve(d, approach, retraction, f_max, d_max, float(-retraction.min()), jumps,
+                      seconds)

@@ -1,0 +1,177 @@
+"""Approach and retraction of a rigid map under separation control, with its jumps.
+
+Each separation is relaxed from the state of the one before, carried along the branch by a
+secant predictor; a relaxation that lands far from the prediction has left its branch: a jump.
+Its pixels are those whose gap moved from the predicted one by more than JUMP_CHANGE, grouped
+into connected patches (one per asperity that jumped); the separation where it happened is
+located to `jump_resolution` by bisection from the last state before it. Units as in `relax`:
+d and gaps in ε, forces as Σ p̄ over the pixels (Δγ a²/ε).
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import ndimage
+
+from fem_asperity.closed_forms.lj import scaled_traction
+
+#: A pixel has jumped where its gap differs from the branch's prediction by more than this (ε):
+#: a jump moves a gap by about ε (μ = 1: from 2.06 to 1.02 in, 1.03 to 2.2 out); the secant's
+#: own error on a stable branch reached 0.24 ε near the pull-off's fold (μ = 1, Δd = 0.1).
+#: Jumps of the gap smaller than this (μ just above the onset 0.697) are not told from the
+#: branch. Pixels farther than JUMP_RANGE from the rigid map before and after are left out.
+JUMP_CHANGE = 0.5
+JUMP_RANGE = 3.0
+#: Contact: compressive traction, gap below ε.
+CONTACT_GAP = 1.0
+
+
+@dataclass(frozen=True)
+class Jump:
+    """One patch of pixels that jumped: `kind` "in" (toward contact) or "out", between the
+    separations `d_before` and `d_after` (ε), `centre` (row, column in pixels, the patch's
+    centroid), `pixels` (its size) and `force_change` (Σp̄ after − before)."""
+
+    kind: str
+    d_before: float
+    d_after: float
+    centre: tuple
+    pixels: int
+    force_change: float
+
+
+@dataclass(frozen=True)
+class RoughPath:
+    """One direction of travel: `d` (ε), `force` (Σp̄, Δγ a²/ε, < 0 tensile), `contact`
+    (pixels in compression), `jumps`, with `steps` and `products` (Newton steps and Hessian
+    products, the cost) and `converged` (every separation relaxed to `relax.TOLERANCE`)."""
+
+    d: np.ndarray
+    force: np.ndarray
+    contact: np.ndarray
+    jumps: tuple
+    steps: int
+    products: int
+    converged: bool
+
+
+class _Walker:
+    """Carries the state and its predecessor along a path on `ljmap`."""
+
+    def __init__(self, ljmap, y, d):
+        self.ljmap, self.y, self.d = ljmap, y, d
+        self.y_before, self.d_before = None, None
+        self.steps = self.products = 0
+        self.converged = True
+
+    def predicted(self, d):
+        """The secant prediction of y at `d` (the state itself at the start, or where the
+        prediction would put a gap below the floor)."""
+        if self.y_before is None or self.d == self.d_before:
+            return self.y
+        guess = self.y + (self.y - self.y_before) * ((d - self.d) / (self.d - self.d_before))
+        return guess if self.ljmap.admissible(guess, d) else self.y
+
+    def relax(self, d):
+        """(state, jumped): the state at `d` relaxed from the prediction (not yet accepted),
+        and whether it left the branch: a gap within JUMP_RANGE moved from the prediction by
+        more than JUMP_CHANGE, or by more than twice the step where there is no secant yet (the
+        prediction then moves every gap by it). (Meeting an unstable state on the way is no
+        sign: near a fold the prediction itself may be one.)"""
+        guess = self.predicted(d)
+        state = self.ljmap.relax(d, guess)
+        self.steps += state.steps
+        self.products += state.products
+        change = _departure(self.ljmap.gap(guess, d), state.gap)
+        allowed = JUMP_CHANGE
+        if self.y_before is None:
+            allowed = max(JUMP_CHANGE, 2.0 * abs(d - self.d))
+        return state, bool(change > allowed)
+
+    def accept(self, d, state, *, jumped=False):
+        """Move to `state` at `d`; after a jump the secant starts afresh."""
+        self.converged &= state.converged
+        self.y_before, self.d_before = (None, None) if jumped else (self.y, self.d)
+        self.y, self.d = state.y, d
+
+
+def follow(ljmap, separations, y0, *, jump_resolution=None, until=None, progress=None):
+    """The path of `ljmap` (`relax.LJMap`) through `separations` (ε, monotone), from the state
+    `y0` → (RoughPath, last y). `jump_resolution` (ε): bisect each jump's separation down to
+    it (None: the step between separations). `until(forces)`: stop after the first separation
+    where it is true of the forces so far. `progress(fraction)`: called after each separation
+    with the fraction of `separations` done."""
+    separations = np.asarray(separations, dtype=float)
+    walker = _Walker(ljmap, y0, separations[0])
+    d_out, force, contact, jumps = [], [], [], []
+    first = ljmap.relax(separations[0], y0)
+    walker.steps, walker.products = first.steps, first.products
+    walker.accept(separations[0], first)
+    _record(first, separations[0], d_out, force, contact)
+    for k, d in enumerate(separations[1:], start=2):
+        if until is not None and until(force):
+            break
+        new, jumped = walker.relax(d)
+        if jumped:
+            new, d_jump = _bisect(walker, d, new, jump_resolution)
+            predicted = walker.ljmap.gap(walker.predicted(d_jump), d_jump)
+            jumps.extend(_patches(predicted, new, walker.d, d_jump))
+            if d_jump != d:  # the jump's landing is a state of the path too
+                walker.accept(d_jump, new, jumped=True)
+                _record(new, d_jump, d_out, force, contact)
+                new, jumped = walker.relax(d)
+        walker.accept(d, new, jumped=jumped)
+        _record(new, d, d_out, force, contact)
+        if progress is not None:
+            progress(k / separations.size)
+    path = RoughPath(np.array(d_out), np.array(force), np.array(contact), tuple(jumps),
+                     walker.steps, walker.products, walker.converged)
+    return path, walker.y
+
+
+def _record(state, d, d_out, force, contact):
+    d_out.append(float(d))
+    force.append(float(state.traction.sum()))
+    contact.append(int(np.count_nonzero(state.gap < CONTACT_GAP)))
+
+
+def _bisect(walker, d, jumped, resolution):
+    """(state after the jump, d where it happened): halves the step from the last state
+    before the jump while it is longer than `resolution`, advancing that state wherever the
+    half step stays stable."""
+    if resolution is None:
+        return jumped, d
+    d_jump, landed = d, jumped
+    while abs(d_jump - walker.d) > resolution:
+        middle = 0.5 * (walker.d + d_jump)
+        state, jumped = walker.relax(middle)
+        if jumped:
+            d_jump, landed = middle, state
+        else:
+            walker.accept(middle, state)
+    return landed, d_jump
+
+
+def _departure(predicted_gap, gap):
+    """Largest |gap − predicted| (ε) over the pixels within JUMP_RANGE."""
+    near = np.minimum(predicted_gap, gap) < JUMP_RANGE
+    return float(np.abs(gap - predicted_gap)[near].max(initial=0.0))
+
+
+def _patches(predicted_gap, landed, d_before, d_after):
+    """The jumps in one step: connected patches of pixels whose gap left the prediction by
+    more than JUMP_CHANGE (within JUMP_RANGE of the map)."""
+    change = landed.gap - predicted_gap
+    near = np.minimum(predicted_gap, landed.gap) < JUMP_RANGE
+    labels, count = ndimage.label((np.abs(change) > JUMP_CHANGE) & near)
+    jumps = []
+    for k in range(1, count + 1):
+        patch = labels == k
+        centre = tuple(float(c) for c in ndimage.center_of_mass(patch))
+        kind = "in" if change[patch].mean() < 0.0 else "out"
+        force_change = float(landed.traction[patch].sum()
+                             - scaled_traction(predicted_gap[patch]).sum())
+        jumps.append(Jump(kind, float(d_before), float(d_after), centre, int(patch.sum()),
+                          force_change))
+    return jumps
+

@@ -1,0 +1,147 @@
+"""The whole-surface solver (gw.explicit): its half-space against Boussinesq and Love, one cap
+against the axisymmetric boundary integral, two caps against the interacting-asperity model."""
+
+import numpy as np
+import pytest
+
+from fem_asperity.closed_forms.lj import scaled_traction
+from fem_asperity.plumbing.errors import InputError
+from fem_asperity.studies.store import stored_curve
+from gw.explicit.halfspace import PixelHalfSpace, love_kernel
+from gw.explicit.interacting import AsperityLaw, Interacting, coupling
+from gw.explicit.topography import Topography
+from gw.explicit.whole import Adhesion, resolution, solve_whole
+
+EPS, RADIUS, DGAMMA = 0.3e-9, 100e-9, 0.05  # m, m, J/m²
+UNIT = np.sqrt(RADIUS * EPS)  # √(Rε), m
+FORCE = 2 * np.pi * RADIUS * DGAMMA  # N
+
+
+def adhesion_at(mu):
+    """E* putting the cap at Tabor parameter mu: μ³ = RΔγ²/(E*²ε³)."""
+    return Adhesion(np.sqrt(RADIUS * DGAMMA**2 / (EPS**3 * mu**3)), DGAMMA, EPS)
+
+
+def cap_map(pixel, width):
+    """One cap z = −r²/2R centred on a square free patch `width` √(Rε) wide."""
+    n = int(round(width / pixel))
+    x = (np.arange(n) - n / 2 + 0.5) * pixel * UNIT
+    return Topography(heights=-(x[:, None] ** 2 + x[None, :] ** 2) / (2 * RADIUS),
+                      pixel=pixel * UNIT, periodic=False, source="one cap")
+
+
+def outside(d, width, *, mu, force):
+    """Force (2πRΔγ) of the LJ law between the cap and the flat beyond the square patch at
+    separation d (ε), the flat lifted there by the Boussinesq far field of the patch's `force`
+    (2πRΔγ): gap d + r̄²/2 + 2μ^1.5 P̄/r̄ (the lift moves the tail by ~15 % at r̄ = 4, μ = 1).
+    Midpoint rule on a grid of 0.01 √(Rε) out to r̄ = 60 (the tail beyond: (16/3) 60⁻⁴)."""
+    h, reach = 0.01, 60.0
+    x = (np.arange(int(2 * reach / h)) + 0.5) * h - reach
+    r = np.hypot(x[:, None], x[None, :])
+    beyond = (np.abs(x)[:, None] > width / 2) | (np.abs(x)[None, :] > width / 2)
+    gap = d + r[beyond] ** 2 / 2 + 2 * mu**1.5 * force / r[beyond]
+    return scaled_traction(gap).sum() * h * h / (2 * np.pi)
+
+
+def test_love_kernel_is_the_pixel_integral_of_one_over_r():
+    assert love_kernel(0.0, 0.0) == pytest.approx(4 * np.arcsinh(1.0), rel=1e-14)
+    # far away it is 1/ρ with the pixel's second moment: 1/ρ + (1/24)(...)/ρ³, so 1e-4 at 7
+    assert love_kernel(5.0, 5.0) == pytest.approx(1 / np.hypot(5, 5), rel=1e-3)
+    # midpoint rule on a 200 × 200 subdivision of the pixel, at an offset of 1.5 pixels
+    s = (np.arange(200) + 0.5) / 200 - 0.5
+    numeric = np.mean(1 / np.hypot(1.5 - s[:, None], 0.25 - s[None, :]))
+    assert love_kernel(1.5, 0.25) == pytest.approx(numeric, rel=1e-5)
+
+
+def test_periodic_half_space_answers_a_cosine_traction_as_boussinesq_says():
+    """p = cos(qx) on a periodic half-space: w = −(2/(E* q)) p, i.e. −c (2π/q) p in pixels."""
+    n, c = 64, 0.3
+    space = PixelHalfSpace.build((n, n), compliance=c, periodic=True)
+    q = 2 * np.pi * 4 / n
+    p = np.cos(q * np.arange(n))[:, None] * np.ones((1, n))
+    assert np.allclose(space.deflection(p), -c * 2 * np.pi / q * p, atol=1e-12)
+    assert abs(space.deflection(np.ones((n, n))).mean()) < 1e-12  # the mean is held at zero
+
+
+def test_free_half_space_sinks_under_a_far_load_as_one_over_r():
+    """One loaded pixel: the deflection 20 pixels away is c/ρ per unit Σp̄ (Boussinesq)."""
+    space = PixelHalfSpace.build((48, 48), compliance=1.0, periodic=False)
+    load = np.zeros((48, 48))
+    load[4, 4] = 1.0
+    w = space.deflection(load)
+    assert w[4, 24] == pytest.approx(-love_kernel(0, 20), rel=1e-12)
+    assert w[4, 24] == pytest.approx(-1 / 20, rel=2e-4)
+
+
+@pytest.mark.parametrize("mu", [0.1, 1.0])
+def test_one_cap_gives_the_axisymmetric_curve(mu):
+    """Most tensile force on approach, jump-in and jump-out of a cap on a free patch against
+    the boundary-integral curve (an independent solver, axisymmetric), the LJ force of the
+    rigid cap beyond the patch added: within the two error estimates."""
+    width, pixel = 8.0, 0.1
+    reference = stored_curve(mu, method="bem", accuracy="default", error_estimate=True)
+    events = reference.events
+    adhesion = adhesion_at(mu)
+    result = solve_whole(cap_map(pixel, width), adhesion, depth=-0.5 * EPS,
+                         jump_resolution=0.005 * EPS)
+    assert result.status == "ok", result.message
+    f_max = result.force_max / FORCE
+    f_max -= outside(result.d_at_max / EPS, width, mu=mu, force=-f_max)
+    tolerance = (result.error_estimate["force_max"] / FORCE
+                 + reference.error_estimate["p_max"])
+    assert f_max == pytest.approx(-events.p_max, abs=tolerance)
+    assert tolerance < 0.01 * abs(events.p_max)  # and the estimate says something
+    jumps = {j.kind: j.d / EPS for j in result.jumps}
+    if events.jump_in is None:
+        assert not jumps
+        return
+    coarse = solve_whole(cap_map(2 * pixel, width), adhesion, depth=-0.5 * EPS,
+                         jump_resolution=0.005 * EPS, estimate=False)
+    coarse_jumps = {j.kind: j.d / EPS for j in coarse.jumps}
+    for kind, delta in (("in", events.jump_in.delta), ("out", events.jump_out.delta)):
+        estimate = abs(jumps[kind] - coarse_jumps[kind]) + 0.005
+        assert jumps[kind] == pytest.approx(delta, abs=estimate)
+        assert estimate < 0.01
+
+
+def test_two_caps_far_apart_are_the_interacting_model():
+    """Two caps 12 √(Rε) apart on one free patch at μ = 1: each sinks the other's ground by
+    2μ^1.5 P̄/r̄ (0.14 ε), which moves both jumps; the interacting-asperity model (the solved
+    law, that far field) puts them within a separation step of the whole surface."""
+    mu, pixel, gap = 1.0, 0.2, 12.0
+    n1, n2 = int(8 / pixel), int((gap + 8) / pixel)
+    x = (np.arange(n1) - n1 / 2 + 0.5) * pixel
+    y = (np.arange(n2) + 0.5) * pixel
+    centres = (4.0, 4.0 + gap)
+    z = np.max([-(x[:, None] ** 2 + (y[None, :] - c) ** 2) / 2 for c in centres], axis=0)
+    surface = Topography(heights=z * EPS, pixel=pixel * UNIT, periodic=False, source="two caps")
+    whole = solve_whole(surface, adhesion_at(mu), depth=0.0, estimate=False,
+                        jump_resolution=0.01 * EPS)
+    law = AsperityLaw.solved(mu)
+    k = coupling([n1 // 2] * 2, [int(c / pixel) for c in centres], shape=z.shape,
+                 pixel=pixel, mu=mu, periodic=False)
+    separations = np.arange(4.0, 0.0, -0.005)
+    model = Interacting(np.zeros(2), k, law)
+    approach, attached, delta = model.follow(separations)
+    retraction, _, _ = model.follow(separations[::-1], attached=attached, delta=delta)
+    step = 0.01 + 0.005  # the whole surface's jump resolution, the model's grid
+    whole_in = [j.d / EPS for j in whole.jumps if j.kind == "in"]
+    whole_out = [j.d / EPS for j in whole.jumps if j.kind == "out"]
+    model_in = [d for kind, d, _ in approach.jumps if kind == "in"]
+    model_out = [d for kind, d, _ in retraction.jumps if kind == "out"]
+    assert len(whole_in) == len(model_in) == 2 and len(whole_out) == len(model_out) == 2
+    assert np.allclose(whole_in, model_in, atol=step + 1e-9)
+    assert np.allclose(whole_out, model_out, atol=step + 1e-9)
+    # without the far field both jumps come later by the 0.14 ε it moves them
+    alone = Interacting(np.zeros(2), 0 * k, law).follow(separations)[0]
+    assert max(d for _, d, _ in alone.jumps) < min(model_in) - 0.04
+
+
+def test_a_coarse_map_is_refused_naming_the_pixel_needed():
+    adhesion = adhesion_at(3.0)  # c = μ^1.5 a/π: a = 0.6 √(Rε) gives 1.0
+    check = resolution(cap_map(0.6, 12.0), adhesion)
+    assert check.refused and check.needed_pixel < 0.6 * UNIT / 8
+    with pytest.raises(InputError, match="use a pixel of at most"):
+        solve_whole(cap_map(0.6, 12.0), adhesion)
+    with pytest.raises(InputError, match="at least 16 pixels"):
+        solve_whole(cap_map(0.2, 2.0), adhesion_at(1.0))
