@@ -1,8 +1,11 @@
-"""Greenwood-Williamson rough surface with adhesion: `python -m gw fmax|curve` (each with --help).
+"""Greenwood-Williamson rough surface with adhesion: `python -m gw fmax|curve|explicit` (each
+with --help).
 
 fmax: the strength of adhesion F̄max and the separation d̃ where it occurs; curve: the total force
 F̄ and contact area S̄ against d̃. Inputs dimensionless (--mu, --zeta, --omega or --sigma-r-eta)
-or in SI; the asperity law is the paper's, refitted, or a solved FE/BEM curve (--law)."""
+or in SI; the asperity law is the paper's, refitted, or a solved FE/BEM curve (--law).
+explicit: your own topography (a height map) answered by GW, interacting asperities and the
+whole surface solved, in SI, with the model the surface needs."""
 
 import argparse
 import sys
@@ -22,6 +25,7 @@ from fem_asperity.solver.presets import PRESETS
 from fem_asperity.solver.solve import solvable_mu
 from fem_asperity.studies.refit import stored_refit
 
+from .explicit import cli as explicit_command
 from .integrate import D_MAX, check_stiffness, separation_range, strength, totals
 from .laws import PaperLaw
 from .surface import RoughSurface, omega_mccool
@@ -78,6 +82,7 @@ def build_parser():
                             "(default: around the law's breakpoints)")
     curve.add_argument("--points", type=int, default=101,
                        help=f"number of d values, 2 to {POINTS_MAX} (default: %(default)s)")
+    explicit_command.add_parser(commands)
     return parser
 
 
@@ -203,6 +208,8 @@ def _with_law(args, law):
 def main(argv=None):
     parser = build_parser()
     args = parser.parse_args(argv)
+    if args.command == "explicit":
+        return explicit_command.main(args, parser)
     mu, surface, scales = _inputs(args, parser)
     _check(args, parser, mu, surface)
     if args.command == "fmax" and args.compare:

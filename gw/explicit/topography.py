@@ -364,18 +364,23 @@ def _statistics(sigma, sigma_s, radius, density, count, method):
                             float(sigma_s / sigma), float(sigma * radius * density), count, method)
 
 
-def summit_statistics(topography):
-    """GW parameters by counting: the summits are the pixels higher than all 8 neighbours
-    (across the edges if the map is periodic; else the border pixels are never summits and η
-    counts over the (nx−2)(ny−2) inner pixels).
+@dataclass(frozen=True, eq=False)
+class Summits:
+    """The summits of a map: their pixels (`rows`, `columns`), `heights` (m) and mean
+    curvatures `curvature` (κ = (z_xx + z_yy)/2, 1/m, < 0 at a summit), and `inner`, the
+    pixels they were sought among."""
 
-    R = −1/mean(κ) with κ = (z_xx + z_yy)/2 the mean curvature at each summit by the 5-point
-    finite differences: Nayak's mean summit curvature, inverted after averaging (an average of
-    the radii would be dominated by the flattest summits). For a paraboloid the differences are
-    exact, for any pixel. For a real or self-affine surface all three of σ_s, R, η depend on
-    the pixel: a finer one resolves more, sharper, lower summits (the classical sampling
-    dependence of summit statistics, Greenwood 1984); quote them with the pixel.
-    """
+    rows: np.ndarray
+    columns: np.ndarray
+    heights: np.ndarray
+    curvature: np.ndarray
+    inner: int
+
+
+def summits(topography):
+    """The pixels higher than all 8 neighbours (across the edges if the map is periodic; else
+    the border pixels are never summits), with their heights and 5-point mean curvatures →
+    `Summits`. InputError where there is none."""
     t = _checked(topography)
     z, h = t.heights, t.pixel
     padded = np.pad(z, 1, mode="wrap") if t.periodic else np.pad(z, 1, constant_values=np.inf)
@@ -389,13 +394,29 @@ def summit_statistics(topography):
     if i.size == 0:
         raise InputError("topography has no summit (no pixel higher than its 8 neighbours"
                          + ("" if t.periodic else " inside the border") + ")")
-    i, j = i + 1, j + 1  # in `padded`
-    centre = padded[i, j]
-    z_xx = (padded[i + 1, j] - 2.0 * centre + padded[i - 1, j]) / h**2
-    z_yy = (padded[i, j + 1] - 2.0 * centre + padded[i, j - 1]) / h**2
-    radius = -1.0 / np.mean(0.5 * (z_xx + z_yy))
+    centre = padded[i + 1, j + 1]
+    z_xx = (padded[i + 2, j + 1] - 2.0 * centre + padded[i, j + 1]) / h**2
+    z_yy = (padded[i + 1, j + 2] - 2.0 * centre + padded[i + 1, j]) / h**2
     inner = nx * ny if t.periodic else (nx - 2) * (ny - 2)
-    return _statistics(np.std(z), np.std(centre), radius, i.size / (inner * h**2), i.size,
+    return Summits(i, j, centre, 0.5 * (z_xx + z_yy), inner)
+
+
+def summit_statistics(topography):
+    """GW parameters by counting the `summits`: η over the pixels they were sought among (the
+    (nx−2)(ny−2) inner ones of a map that does not repeat).
+
+    R = −1/mean(κ) with κ = (z_xx + z_yy)/2 the mean curvature at each summit by the 5-point
+    finite differences: Nayak's mean summit curvature, inverted after averaging (an average of
+    the radii would be dominated by the flattest summits). For a paraboloid the differences are
+    exact, for any pixel. For a real or self-affine surface all three of σ_s, R, η depend on
+    the pixel: a finer one resolves more, sharper, lower summits (the classical sampling
+    dependence of summit statistics, Greenwood 1984); quote them with the pixel.
+    """
+    t = _checked(topography)
+    found = summits(t)
+    radius = -1.0 / np.mean(found.curvature)
+    return _statistics(np.std(t.heights), np.std(found.heights), radius,
+                       found.heights.size / (found.inner * t.pixel**2), found.heights.size,
                        "summits")
 
 

@@ -113,6 +113,19 @@ def resolution(topography, adhesion):
                       worst > REFUSE)
 
 
+def check_map(topography, adhesion):
+    """The map's `Resolution`, after refusing (InputError) a map with fewer than MIN_PIXELS
+    along a side or a pixel more than REFUSE times too coarse."""
+    if min(topography.heights.shape) < MIN_PIXELS:
+        raise InputError(f"the map must have at least {MIN_PIXELS} pixels along each side "
+                         f"to hold a contact and its error estimate; got "
+                         f"{topography.heights.shape}")
+    check = resolution(topography, adhesion)
+    if check.refused:
+        raise InputError(check.message(topography.pixel) + f" (more than {REFUSE:g} x over)")
+    return check
+
+
 @dataclass(frozen=True)
 class SurfacePath:
     """One direction of travel in SI: `d` (m), `force` (N, < 0 tensile), `contact_area` (m²,
@@ -195,13 +208,7 @@ def solve_whole(topography, adhesion, *, accuracy="default", depth=None, jump_re
     """
     if accuracy not in STEPS:
         raise InputError(f"accuracy must be one of {', '.join(STEPS)}; got {accuracy!r}")
-    if min(topography.heights.shape) < MIN_PIXELS:
-        raise InputError(f"the map must have at least {MIN_PIXELS} pixels along each side "
-                         f"to hold a contact and its error estimate; got "
-                         f"{topography.heights.shape}")
-    check = resolution(topography, adhesion)
-    if check.refused:
-        raise InputError(check.message(topography.pixel) + f" (more than {REFUSE:g} x over)")
+    check = check_map(topography, adhesion)
     eps, step = adhesion.eps, STEPS[accuracy]
     top = float(topography.heights.max()) / eps + START_GAP
     lowest = None if depth is None else float(depth) / eps

@@ -1,0 +1,127 @@
+"""`python -m gw explicit` and `gw.explicit.answer`: a user's topography in SI, the three models,
+the verdict, and bad input refused in one line before anything is written."""
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from gw.explicit import Adhesion, gaussian_caps
+from gw.explicit.answer import answer
+from gw.explicit.compare import visible
+from gw.explicit.interacting import AsperityLaw
+
+EPS, RADIUS, DGAMMA = 0.3e-9, 300e-9, 0.05
+UNIT = np.sqrt(RADIUS * EPS)
+E_STAR = float(np.sqrt(RADIUS * DGAMMA**2 / EPS**3))  # μ = 1 at the caps radius
+
+
+def cli(*args, cwd=None):
+    return subprocess.run([sys.executable, "-m", "gw", "explicit", *args], capture_output=True,
+                          text=True, cwd=cwd)
+
+
+@pytest.fixture(scope="module")
+def caps_map(tmp_path_factory):
+    """Eight caps at Gaussian heights (σ = 2ε) on a periodic 64² map, μ = 1 at their radius."""
+    surface, caps = gaussian_caps(n=64, pixel=0.2 * UNIT, radius=RADIUS, sigma=2 * EPS,
+                                  density=8 / (64 * 0.2 * UNIT) ** 2, seed=1, periodic=True)
+    path = tmp_path_factory.mktemp("map") / "map.npy"
+    np.save(path, surface.heights)
+    return path, surface, caps
+
+
+def physical(path, surface):
+    return ["--topography", str(path), "--pixel-size", repr(float(surface.pixel)), "--periodic",
+            "--E-star", repr(E_STAR), "--dgamma", repr(DGAMMA), "--eps", repr(EPS)]
+
+
+def test_a_users_map_is_answered_in_si_by_every_model(caps_map, tmp_path):
+    path, surface, _ = caps_map
+    run = cli(*physical(path, surface), "--accuracy", "draft", "--json", "--out",
+              str(tmp_path / "out"))
+    assert run.returncode == 0, run.stderr
+    out = json.loads(run.stdout)
+    si = out["si"]
+    assert si["force_max"] > 0 and si["pressure_max"] == pytest.approx(
+        si["force_max"] / (64 * surface.pixel) ** 2, rel=1e-12)
+    assert out["approach"]["d"] and len(out["approach"]["d"]) == len(out["approach"]["force"])
+    assert out["error_estimate"]["force_max"] > 0
+    assert set(out["models"]) == {"gw", "interacting", "whole"}
+    assert out["mu"] == pytest.approx(1.0, rel=1e-9)  # the caps' radius, measured exactly
+    # eight caps of one law, far apart: every model near 8 pull-offs of one cap (0.8353 at μ = 1,
+    # the BEM), less where the Gaussian heights keep some from pulling at once
+    per_cap = 2 * np.pi * RADIUS * DGAMMA
+    for model in out["models"].values():
+        assert 0.3 * 8 * per_cap < model["force_max"] < 8 * 0.8353 * per_cap
+    assert out["needs"] in ("gw", "interacting", "whole")
+    written = sorted(p.name for p in (tmp_path / "out").iterdir())
+    assert {"result.json", "approach.csv", "retraction.csv", "models.png"} <= set(written)
+    rows = (tmp_path / "out" / "approach.csv").read_text().splitlines()
+    assert rows[0] == "d_m,force_N,contact_area_m2" and len(rows) == len(out["approach"]["d"]) + 1
+
+
+def test_the_cheap_models_need_no_whole_solve(caps_map):
+    path, surface, _ = caps_map
+    run = cli(*physical(path, surface), "--model", "interacting", "--json")
+    assert run.returncode == 0, run.stderr
+    out = json.loads(run.stdout)
+    assert set(out["models"]) == {"gw", "interacting"} and out["needs"] is None
+    assert out["si"]["force_max"] == out["models"]["interacting"]["force_max"]
+
+
+@pytest.mark.parametrize("change, says", [
+    (lambda z: np.where(np.arange(z.size).reshape(z.shape) == 5, np.nan, z), "NaN"),
+    (lambda z: z[:10, :10], "at least 16 pixels"),
+])
+def test_bad_maps_are_one_line_exit_2_nothing_written(caps_map, tmp_path, change, says):
+    path, surface, _ = caps_map
+    bad = tmp_path / "bad.npy"
+    np.save(bad, change(surface.heights))
+    args = physical(path, surface)
+    args[1] = str(bad)
+    run = cli(*args, "--out", str(tmp_path / "out"))
+    assert run.returncode == 2 and says in run.stderr and len(run.stderr.splitlines()) == 1
+    assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("swap, says", [
+    (("--pixel-size", "-1e-9"), "pixel"),
+    (("--pixel-size", "1e-7"), "use a pixel of at most"),  # c = 3.3: refused
+    (("--eps", "-3e-10"), "eps"),
+])
+def test_bad_sizes_are_one_line_exit_2_nothing_written(caps_map, tmp_path, swap, says):
+    path, surface, _ = caps_map
+    args = physical(path, surface)
+    args[args.index(swap[0]) + 1] = swap[1]
+    run = cli(*args, "--out", str(tmp_path / "out"))
+    assert run.returncode == 2 and says in run.stderr and len(run.stderr.splitlines()) == 1
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_missing_pixel_size_names_the_option(caps_map):
+    path, surface, _ = caps_map
+    args = physical(path, surface)
+    del args[2:4]
+    run = cli(*args)
+    assert run.returncode == 2 and "--pixel-size" in run.stderr
+
+
+def test_the_answer_is_the_same_in_python(caps_map):
+    """The Python API gives the command line's numbers (GW at the summits' own σ_s)."""
+    _, surface, caps = caps_map
+    found = answer(surface, Adhesion(E_STAR, DGAMMA, EPS), model="gw",
+                   law=AsperityLaw.solved(1.0))
+    # between the caps whose apex stands 0.1 eps clear of every other cap and all those not
+    # covered, counted from their centres, not the map (a pixel hides an apex barely clear)
+    side = surface.size[0]
+    dx = (caps.x[:, None] - caps.x[None, :] + side / 2) % side - side / 2
+    dy = (caps.y[:, None] - caps.y[None, :] + side / 2) % side - side / 2
+    above = caps.z[None, :] - (dx**2 + dy**2) / (2 * RADIUS) - caps.z[:, None]
+    np.fill_diagonal(above, -np.inf)
+    clear = above.max(axis=1) < -0.1 * EPS
+    assert clear.sum() <= found.statistics["summits"]["count"]
+    assert found.statistics["summits"]["count"] <= visible(caps, surface.size, True).sum()
+    assert found.models["gw"].force_max > 0 and found.whole is None
