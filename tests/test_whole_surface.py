@@ -145,3 +145,13 @@ def test_a_coarse_map_is_refused_naming_the_pixel_needed():
         solve_whole(cap_map(0.6, 12.0), adhesion)
     with pytest.raises(InputError, match="at least 16 pixels"):
         solve_whole(cap_map(0.2, 2.0), adhesion_at(1.0))
+
+
+def test_a_periodic_summit_feels_the_lattice_of_its_images():
+    """The coupling's diagonal on a periodic map: the regular part of the periodic 1/r kernel
+    with the mean held at zero, the square lattice's Madelung constant −3.900265/L (pixels),
+    times 2μ^1.5/ā; nothing on a free patch."""
+    for n in (58, 116):
+        k = coupling([0], [0], shape=(n, n), pixel=1.0, mu=1.0, periodic=True)
+        assert k[0, 0] / 2 == pytest.approx(-3.900265 / n, rel=0.01)
+    assert coupling([0], [0], shape=(58, 58), pixel=1.0, mu=1.0, periodic=False)[0, 0] == 0

@@ -2,7 +2,9 @@
 
 all: everything below and the report; single-asperity: the paper's fitted laws (Figs. 3-7)
 judged against FE sweeps, the BEM as cross-check; rough-surface: Figs. 9-13, their verdicts, the
-paper's law against the solved law; layered: a bonded layer over thickness and modulus. Curves
+paper's law against the solved law; rough-explicit: GW against rough surfaces solved whole and
+interacting asperities (all: one small surface; --full: the map over mu, zeta, sigma R eta);
+layered: a bonded layer over thickness and modulus. Curves
 are solved once and stored ($ADHESION_CACHE). accuracy: the speed-accuracy trade of the solvers'
 settings (`validation.accuracy`; not part of all); bench: timings of the main operations, for
 comparing versions."""
@@ -24,6 +26,7 @@ from .closed_forms import closed_form_checks
 from .law_figure import law_table, plot_laws
 from .layered import section as layered_section
 from .report import PENDING, provenance, render
+from .rough_explicit import section as explicit_section
 from .rough_surface import COMPARISON_MU
 from .rough_surface import run as run_rough_surface
 from .rough_surface import section as rough_section
@@ -52,6 +55,15 @@ ROUGH_FILES = (
     ("rough_surface.md", "the rough-surface section of the report on its own"),
 )
 
+EXPLICIT_FILES = (
+    ("rough_explicit/report.md", "GW, interacting asperities and the whole surface on GW "
+                                 "surfaces made explicit (the map with --full)"),
+    ("rough_explicit/rough_explicit.json", "the same as data, with every model's curve"),
+    ("rough_explicit/curves.png", "F against d for every model on the first surface"),
+)
+EXPLICIT_MAP_FILES = (("rough_explicit/map.png", "GW's and the interacting model's F_max error "
+                                                "over sigma R eta, per mu and zeta"),)
+
 LAYERED_FILES = (
     ("layered/report.md", "maps over thickness and modulus, limits, coated rough surface, FE "
                           "against the layered BEM"),
@@ -69,14 +81,19 @@ def build_parser():
     single = commands.add_parser("single-asperity",
                                  help="Figs. 3-7: the paper's fitted laws judged against FE sweeps")
     rough = commands.add_parser("rough-surface", help="Figs. 9-13, verdicts, paper vs solved law")
+    explicit = commands.add_parser("rough-explicit", help="GW against rough surfaces solved "
+                                   "whole and interacting asperities")
+    explicit.add_argument("--full", action="store_true",
+                          help="the map over mu, zeta and sigma R eta (many whole-surface "
+                               "solves; stored, so an interrupted map resumes)")
     layers = commands.add_parser("layered", help="layered media: maps over thickness and modulus, "
                                  "the homogeneous limits, a coated rough surface, FE vs BEM")
-    for command in (single, rough, layers):
+    for command in (single, rough, layers, explicit):
         command.add_argument("--out", type=Path, default=Path("out"), help="output folder")
         command.add_argument("--json", action="store_true", help="print a JSON summary")
     layers.add_argument("--accuracy", choices=tuple(PRESETS), default="default",
                         help="accuracy of the layered curves (default)")
-    for command in (layers,):
+    for command in (layers, explicit):
         command.add_argument("--jobs", type=int, help="worker processes (default: one per core)")
         command.add_argument("--scheduler", metavar="ADDRESS",
                              help="run the sweeps on this Dask scheduler (extra 'cluster')")
@@ -145,29 +162,44 @@ def _layered(out, args, first_step, total, command):
                                                          "jump_removed", "failed")}}
 
 
+def _explicit(out, args, first_step, total, command):
+    """Run the rough-explicit stage; returns (its summary, the part for the overall one)."""
+    from .rough_explicit import run as run_explicit
+
+    steps = iter(range(first_step, first_step + 1))
+    explicit = run_explicit(out, full=getattr(args, "full", False), jobs=args.jobs,
+                            scheduler=args.scheduler,
+                            step=lambda text: _step(next(steps, first_step), text, total),
+                            header=provenance(command))
+    holds = {name: sum(r["holds"][name] for r in explicit["scenes"])
+             for name in explicit["scenes"][0]["holds"]}
+    return explicit, {"rough_explicit": {"surfaces": len(explicit["scenes"]), "holds": holds}}
+
+
 def run_all(out, command, args):
     """Write every output into `out`; return a summary dict."""
     start = time.perf_counter()
-    _step(1, "paper laws over mu (closed forms, Maugis-Dugdale)", 9)
+    _step(1, "paper laws over mu (closed forms, Maugis-Dugdale)", 10)
     rows = law_table()
     table = {"method": "closed-form laws with the paper's constants (exact evaluation)",
              "constants": asdict(PAPER_LAWS), "rows": rows}
     write_atomic(out / "paper_laws.json", json.dumps(table, indent=1, allow_nan=False))
-    _step(2, "figure of the laws", 9)
+    _step(2, "figure of the laws", 10)
     save_figure(plot_laws(rows), out / "paper_laws.png")
-    _step(3, "closed-form checks", 9)
+    _step(3, "closed-form checks", 10)
     checks = closed_form_checks()
-    single, single_summary = _single(out, args, 4, 9)
-    rough, rough_summary = _rough(out, args, 6, 9)
-    layered, layered_summary = _layered(out, args, 8, 9, command)
-    files = FILES + SINGLE_FILES + ROUGH_FILES + LAYERED_FILES
+    single, single_summary = _single(out, args, 4, 10)
+    rough, rough_summary = _rough(out, args, 6, 10)
+    explicit, explicit_summary = _explicit(out, args, 8, 10, command)
+    layered, layered_summary = _layered(out, args, 9, 10, command)
+    files = FILES + SINGLE_FILES + ROUGH_FILES + EXPLICIT_FILES + LAYERED_FILES
     wall_s = time.perf_counter() - start
     write_atomic(out / "report.md", render(checks, files, command, rough_section(rough),
                                            single_section(single), layered_section(layered),
-                                           wall_s=wall_s))
+                                           explicit_section(explicit), wall_s=wall_s))
     return {"files": [name for name, _ in files],
             "checks": [c.as_dict() for c in checks], **single_summary, **rough_summary,
-            **layered_summary,
+            **explicit_summary, **layered_summary,
             "not_yet_available": [{"item": i, "needs": n} for i, n in PENDING],
             "wall_s": wall_s}
 
@@ -194,6 +226,10 @@ def _run(args, command, out):
         return {"files": [name for name, _ in SINGLE_FILES], **_single(out, args, 1, 2)[1]}
     if args.command == "rough-surface":
         return {"files": [name for name, _ in ROUGH_FILES], **_rough(out, args, 1, 2)[1]}
+    if args.command == "rough-explicit":
+        files = EXPLICIT_FILES + (EXPLICIT_MAP_FILES if args.full else ())
+        return {"files": [name for name, _ in files],
+                **_explicit(out, args, 1, 1, command)[1]}
     if args.command == "layered":
         return {"files": [name for name, _ in LAYERED_FILES],
                 **_layered(out, args, 1, 2, command)[1]}

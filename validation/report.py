@@ -31,7 +31,7 @@ def provenance(command):
             f"commit {git_commit(HERE) or 'unknown'}, {now}, on {machine_phrase()}.")
 
 
-def render(checks, files, command, rough="", single="", layered="", wall_s=None):
+def render(checks, files, command, rough="", single="", layered="", explicit="", wall_s=None):
     """The report as Markdown text; `wall_s`: how long the run that wrote it took."""
     took = [] if wall_s is None else [
         "", f"This run took {wall_s:.0f} s (curves not in the store were solved; a second run "
@@ -57,6 +57,7 @@ def render(checks, files, command, rough="", single="", layered="", wall_s=None)
                      f"| {c.verdict} | {c.how} |")
     lines += ["", single] if single else []
     lines += ["", rough] if rough else []
+    lines += ["", explicit] if explicit else []
     lines += ["", layered] if layered else []
     lines += ["", "## Not yet judged", "", "| item | needs |", "|---|---|"]
     lines += [f"| {item} | {needs} |" for item, needs in PENDING]

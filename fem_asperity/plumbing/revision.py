@@ -25,17 +25,18 @@ def _source(module):
 
 
 def _package_imports(module):
-    """Absolute names of the fem_asperity modules `module` imports from (the package imports
-    from modules only: `from ..path.curve import Curve`, never `from .. import path`)."""
+    """Absolute names of the modules of fem_asperity and of `module`'s own package (gw's, for a
+    root in gw) that `module` imports from (the packages import from modules only: `from
+    ..path.curve import Curve`, never `from .. import path`)."""
     tree = ast.parse(_source(module))
     package = module.rsplit(".", 1)[0]
     found = {importlib.util.resolve_name("." * node.level + (node.module or ""), package)
              for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)}
-    return {name for name in found if name.split(".")[0] == "fem_asperity"}
+    return {name for name in found if name.split(".")[0] in ("fem_asperity", module.split(".")[0])}
 
 
 def revision_modules(roots=REVISION_ROOTS):
-    """The fem_asperity modules reachable by imports from `roots`, sorted."""
+    """The modules reachable by imports from `roots` (`_package_imports`), sorted."""
     seen, todo = set(), list(roots)
     while todo:
         module = todo.pop()

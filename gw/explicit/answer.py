@@ -123,7 +123,7 @@ def answer(topography, adhesion, *, model="whole", accuracy="default", radius=No
                          "left out")
         else:
             models["interacting"] = _interacting(topography, found, law, scales, d_grid,
-                                                 unit_force, area)
+                                                 unit_force, area, notes)
     whole = None
     if model == "whole":
         whole = solve_whole(topography, adhesion, accuracy=accuracy, progress=progress)
@@ -159,13 +159,17 @@ def _separations(topography, adhesion, accuracy):
     return np.arange(top, bottom, -STEPS[accuracy] * eps)
 
 
-def _interacting(topography, found, law, scales, d_grid, unit_force, area):
+def _interacting(topography, found, law, scales, d_grid, unit_force, area, notes):
     started = time.perf_counter()
     pixel = topography.pixel / scales.length_r
     k = coupling(found.rows, found.columns, shape=topography.shape, pixel=pixel, mu=scales.mu,
                  periodic=topography.periodic)
     model = Interacting(found.heights / scales.eps, k, law)
     path, _, _ = model.follow(d_grid / scales.eps)
+    if path.stopped is not None:
+        notes.append(f"interacting: no equilibrium of the far-field model below d = "
+                     f"{path.stopped * scales.eps:.4g} m (contacts too large or too close "
+                     "for it); its F_max is that of the path above")
     f_max, d_max, _ = most_tensile(path.d, path.force)
     return ModelAnswer(f_max * unit_force, d_max * scales.eps, f_max * unit_force / area,
                        time.perf_counter() - started, path.d * scales.eps,

@@ -94,7 +94,9 @@ class Scene:
 class ModelCurve:
     """One model on one surface: `d` (d̃), `approach` and `retraction` (F̄, < 0 tensile; the
     retraction None where the model has none), `f_max` (F̄max > 0, on approach), `d_at_max`
-    (d̃), `f_off` (the most tensile F̄ on retraction, > 0), `jumps` (in, out), `seconds`."""
+    (d̃), `f_off` (the most tensile F̄ on retraction, > 0), `jumps` (in, out), `seconds`, and
+    `stopped` (d̄, ε: where the interacting model found no equilibrium and its path ends;
+    None where it did not)."""
 
     d: np.ndarray
     approach: np.ndarray
@@ -104,6 +106,7 @@ class ModelCurve:
     f_off: float | None
     jumps: tuple
     seconds: float
+    stopped: float | None = None
 
 
 @dataclass(frozen=True)
@@ -145,11 +148,12 @@ def compare(scene, *, accuracy="default", law=None, progress=None):
                              periodic=scene.periodic)
         model = Interacting(heights, k, law)
         up, attached, delta = model.follow(d_eps)
-        down, _, _ = model.follow(d_eps[::-1], attached=attached, delta=delta)
+        down, _, _ = model.follow(up.d[::-1], attached=attached, delta=delta)
         jumps = (sum(j[0] == "in" for j in up.jumps + down.jumps),
                  sum(j[0] == "out" for j in up.jumps + down.jumps))
-        models[name] = _curve(d_eps / sigma, up.force / count, down.force[::-1] / count, jumps,
-                              time.perf_counter() - started)
+        models[name] = _curve(up.d / sigma, up.force / count,
+                              _padded(down.force[::-1], up.d.size) / count, jumps,
+                              time.perf_counter() - started, up.stopped)
     surface = RoughSurface(zeta=scene.zeta, omega=1.0)
     for name, gw_law in (("gw_paper", PaperLaw(scene.mu)), ("gw_solved", law.approach)):
         started = time.perf_counter()
@@ -179,7 +183,12 @@ def visible(caps, size, periodic):
     return above.max(axis=1) < 0.0
 
 
-def _curve(d, approach, retraction, jumps, seconds):
+def _padded(values, size):
+    """`values` with NaN after them up to `size` (a retraction that stopped early)."""
+    return np.concatenate([values, np.full(size - values.size, np.nan)])
+
+
+def _curve(d, approach, retraction, jumps, seconds, stopped=None):
     f_max, d_max, _ = most_tensile(d, approach)
-    return ModelCurve(d, approach, retraction, f_max, d_max, float(-retraction.min()), jumps,
-                      seconds)
+    return ModelCurve(d, approach, retraction, f_max, d_max, float(-np.nanmin(retraction)),
+                      jumps, seconds, stopped)

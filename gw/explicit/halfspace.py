@@ -23,6 +23,10 @@ import scipy.fft
 
 from fem_asperity.plumbing.checks import positive
 
+#: Threads per FFT: all cores for one solve; a pool of solves sets 1 in each worker
+#: (`validation.rough_explicit`), as the sweeps hold BLAS to one thread per curve.
+FFT_WORKERS = -1
+
 
 def love_kernel(offset_x, offset_y):
     """∫∫ dx'dy'/√((x − x')² + (y − y')²) over a unit pixel centred at 0, at the point
@@ -83,8 +87,8 @@ class PixelHalfSpace:
 
     def apply_root(self, v):
         """S v for v on `grid`."""
-        return scipy.fft.irfft2(scipy.fft.rfft2(v, workers=-1) * self.root, s=self.grid,
-                                workers=-1)
+        return scipy.fft.irfft2(scipy.fft.rfft2(v, workers=FFT_WORKERS) * self.root,
+                                s=self.grid, workers=FFT_WORKERS)
 
     def on_map(self, v):
         """The map's pixels of a field on `grid`."""

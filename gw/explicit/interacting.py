@@ -15,7 +15,10 @@ rises past its jump-out. At each separation the δ̄ are solved by Newton (GMRES
 I − K diag(P̄′)) with the states held, then every summit past its threshold switches and the
 solve repeats until no state changes: a switch is that summit's jump, a run of switches a
 cascade. Where the coupled branch ends before any summit reaches its own threshold (the
-neighbours' pull makes the fold come early), the summit nearest its threshold switches.
+neighbours' pull makes the fold come early), the summit nearest its threshold switches. A
+summit switches at most once per separation: where its own jump would take it back past the
+other threshold (on a periodic map its own share of the mean deflection moves it by K_ii ΔP̄),
+it keeps its new state off its branch rather than cycle.
 With K = 0 this is the GW sum over these summits.
 """
 
@@ -33,6 +36,11 @@ from .halfspace import PixelHalfSpace
 TOLERANCE = 1e-10
 #: Newton steps per state set, and state sweeps per separation, before giving up.
 MAX_NEWTON, MAX_SWEEPS = 50, 200
+#: Where the held states have no equilibrium, a summit within this (ε) of its threshold is
+#: taken to jump (the coupled fold comes early: two caps 12 √(Rε) apart at μ = 1 lost their
+#: branch with δ̄ within 0.002 ε of it); farther from every threshold the model stops
+#: (`SummitPath.stopped`).
+FOLD_BAND = 0.1
 #: Step of the one-sided difference for P̄′ (ε): the laws are PCHIP in δ̄, smooth on 1e-6.
 SLOPE_STEP = 1e-6
 
@@ -70,7 +78,9 @@ class AsperityLaw:
 class SummitPath:
     """One direction of travel: `d` (ε, from the map's datum), `force` (Σ P̄ over the
     summits, 2πRΔγ, < 0 tensile), `area` (Σ Ā, εR), `attached` (summits attached), the
-    `jumps` (tuples (kind, d̄, summit index)), `sweeps` (state sweeps, the cost)."""
+    `jumps` (tuples (kind, d̄, summit index)), `sweeps` (state sweeps, the cost), and
+    `stopped`: the d̄ where the model found no equilibrium and the path ends (None: it ran
+    through every separation)."""
 
     d: np.ndarray
     force: np.ndarray
@@ -78,22 +88,39 @@ class SummitPath:
     attached: np.ndarray
     jumps: tuple
     sweeps: int
+    stopped: float | None = None
 
 
 def coupling(rows, columns, *, shape, pixel, mu, periodic):
     """K (n × n): the separation change of summit i per unit P̄ of summit j, for summits at the
-    pixels (`rows`, `columns`) of a map of `shape` pixels of `pixel` √(Rε); zero diagonal."""
+    pixels (`rows`, `columns`) of a map of `shape` pixels of `pixel` √(Rε). The diagonal holds
+    what a summit does to itself beyond its own law (the law's half-space is free and infinite):
+    nothing on a free patch; on a periodic map the regular part of the periodic kernel at its
+    own place, lim G_per(ρ) − 1/ρ (< 0: the mean deflection held at zero lowers the ground under
+    every loaded summit by its share of the mean). It scales as 1/L, so it is 2(G_L(0) −
+    G_2L(0)), the pixel's own part cancelling: −3.925/L on a square map of L pixels against
+    the square lattice's Madelung constant −3.9003/L (test_whole_surface.py)."""
     positive("pixel", pixel)
+    kernel = _unit_response(shape, periodic)
+    grid = kernel.shape
+    rows, columns = np.asarray(rows, dtype=int), np.asarray(columns, dtype=int)
+    di = (rows[:, None] - rows[None, :]) % grid[0]
+    dj = (columns[:, None] - columns[None, :]) % grid[1]
+    k = 2.0 * mu**1.5 * kernel[di, dj] / pixel
+    own = 0.0
+    if periodic:
+        own = 2.0 * mu**1.5 * 2.0 * (kernel[0, 0] - _unit_response(
+            (2 * shape[0], 2 * shape[1]), periodic)[0, 0]) / pixel
+    np.fill_diagonal(k, own)
+    return k
+
+
+def _unit_response(shape, periodic):
+    """G at every offset (pixel units): the deflection of a unit Σp̄ on pixel (0, 0)."""
     space = PixelHalfSpace.build(shape, compliance=1.0, periodic=periodic)
     unit = np.zeros(space.grid)
     unit[0, 0] = 1.0
-    kernel = space.apply_root(space.apply_root(unit))  # G at every offset, in pixel units
-    rows, columns = np.asarray(rows, dtype=int), np.asarray(columns, dtype=int)
-    di = (rows[:, None] - rows[None, :]) % space.grid[0]
-    dj = (columns[:, None] - columns[None, :]) % space.grid[1]
-    k = 2.0 * mu**1.5 * kernel[di, dj] / pixel
-    np.fill_diagonal(k, 0.0)
-    return k
+    return space.apply_root(space.apply_root(unit))
 
 
 class Interacting:
@@ -101,6 +128,7 @@ class Interacting:
     `law` (`AsperityLaw`)."""
 
     def __init__(self, heights, k, law):
+        """`k`: the coupling (its diagonal the summits' own correction, `coupling`)."""
         self.heights = np.asarray(heights, dtype=float)
         self.k, self.law = np.asarray(k, dtype=float), law
         if self.k.shape != (self.heights.size,) * 2:
@@ -158,14 +186,17 @@ class Interacting:
                 return delta, True
         return delta, False
 
-    def _nearest_fold(self, delta, attached):
-        """(come in, go out) with the one summit nearest its threshold switched: where the
-        coupled branch ends, the summit nearest its own fold goes first."""
+    def _nearest_fold(self, delta, attached, switched):
+        """(come in, go out) with the one summit nearest its threshold switched, if one is
+        within FOLD_BAND of it: where the coupled branch ends, the summit nearest its own fold
+        goes first. None where none is that near: the far-field model has no equilibrium
+        there that a jump explains (contacts too large or too close for it)."""
         jump_in = -np.inf if self.law.jump_in is None else self.law.jump_in
         jump_out = np.inf if self.law.jump_out is None else self.law.jump_out
         margin = np.where(attached, jump_out - delta, delta - jump_in)
-        if not np.isfinite(margin).any():
-            raise ArithmeticError("the interacting summits did not converge (no jumps to take)")
+        margin[switched] = np.inf  # each summit switches once per separation
+        if not margin.min() < FOLD_BAND:
+            return None
         first = np.zeros(delta.size, bool)
         first[int(np.argmin(margin))] = True
         return first & ~attached, first & attached
@@ -176,27 +207,34 @@ class Interacting:
         attached = np.zeros(self.heights.size, bool) if attached is None else attached.copy()
         delta = separations[0] - self.heights if delta is None else delta
         out = {"d": [], "force": [], "area": [], "attached": []}
-        jumps, sweeps = [], 0
+        jumps, sweeps, stopped = [], 0, None
         for d in separations:
+            switched = np.zeros(self.heights.size, bool)
             for _ in range(MAX_SWEEPS):
                 sweeps += 1
                 solved, converged = self._solve(d, delta, attached)
+                switches = (self._switching(solved, attached) if converged
+                            else self._nearest_fold(solved, attached, switched))
+                if switches is None:
+                    break
                 if converged:
                     delta = solved
-                    come_in, go_out = self._switching(delta, attached)
-                else:
-                    come_in, go_out = self._nearest_fold(solved, attached)
+                come_in, go_out = (s & ~switched for s in switches)
                 if not (come_in.any() or go_out.any()):
                     break
+                switched |= come_in | go_out
                 jumps += [("in", float(d), int(i)) for i in np.flatnonzero(come_in)]
                 jumps += [("out", float(d), int(i)) for i in np.flatnonzero(go_out)]
                 attached = (attached | come_in) & ~go_out
             else:
-                raise ArithmeticError(f"the summits' states did not settle at d = {d:g} eps")
+                switches = None  # the states cycle: no settled equilibrium either
+            if switches is None:
+                stopped = float(d)
+                break
             out["d"].append(float(d))
             out["force"].append(float(self._force(delta, attached).sum()))
             out["area"].append(float(self._area(delta, attached).sum()))
             out["attached"].append(int(attached.sum()))
         path = SummitPath(*(np.array(out[key]) for key in ("d", "force", "area", "attached")),
-                          tuple(jumps), sweeps)
+                          tuple(jumps), sweeps, stopped)
         return path, attached, delta
