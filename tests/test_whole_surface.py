@@ -155,3 +155,23 @@ def test_a_periodic_summit_feels_the_lattice_of_its_images():
         k = coupling([0], [0], shape=(n, n), pixel=1.0, mu=1.0, periodic=True)
         assert k[0, 0] / 2 == pytest.approx(-3.900265 / n, rel=0.01)
     assert coupling([0], [0], shape=(58, 58), pixel=1.0, mu=1.0, periodic=False)[0, 0] == 0
+
+
+def test_interacting_summits_tend_to_the_gw_sum_as_they_spread():
+    """Ten summits at Gaussian heights (σ = 2ε), their places spread by 1, 4 and 16 on a free
+    patch at μ = 1: the far field falls as 1/r, and so does the interacting model's departure
+    from the sum without interaction (F̄max and the jump-in separations)."""
+    law = AsperityLaw.solved(1.0)
+    rng = np.random.default_rng(7)
+    heights = rng.normal(0.0, 2.0, 10)
+    rows, columns = rng.integers(0, 40, 10), rng.integers(0, 40, 10)
+    separations = np.arange(8.0, -3.0, -0.02)
+    alone = Interacting(heights, np.zeros((10, 10)), law).follow(separations)[0]
+    departures = []
+    for spread in (1, 4, 16):
+        k = coupling(rows * spread, columns * spread, shape=(40 * spread, 40 * spread),
+                     pixel=0.5, mu=1.0, periodic=False)
+        path = Interacting(heights, k, law).follow(separations)[0]
+        departures.append(abs(path.force.min() - alone.force.min()))
+    assert departures[0] > 2 * departures[1] > 4 * departures[2]
+    assert departures[2] < 0.01 * abs(alone.force.min())

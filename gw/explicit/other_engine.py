@@ -29,6 +29,7 @@ are 50-100 times slower when the other core is busy.
 
 import time
 import warnings
+from importlib import metadata
 
 import numpy as np
 from threadpoolctl import threadpool_limits
@@ -43,8 +44,6 @@ def _import_engine():
     try:
         with warnings.catch_warnings():
             warnings.filterwarnings("ignore", message="Could not import mpi4py")
-            import Adhesion
-            import ContactMechanics
             import scipy.optimize
             from Adhesion.Interactions import Lj82
             from Adhesion.System import SmoothContactSystem
@@ -53,8 +52,9 @@ def _import_engine():
     except ImportError as err:
         raise InputError(f"the other engine needs ContactMechanics and Adhesion: {_PIP}") from err
     return {
-        "version": f"ContactMechanics {ContactMechanics.__version__}"
-        f" + Adhesion {Adhesion.__version__}",
+        # the distributions' versions: the modules' __version__ can be a build's git hash
+        "version": f"ContactMechanics {metadata.version('ContactMechanics')}"
+        f" + Adhesion {metadata.version('Adhesion')}",
         "Lj82": Lj82,
         "SmoothContactSystem": SmoothContactSystem,
         "Free": FreeFFTElasticHalfSpace,
