@@ -14,10 +14,10 @@ import time
 import numpy as np
 from provenance import add_output_options, provenance, write_results
 
-from fem_asperity.closed_forms.lj import scaled_traction
 from fem_asperity.studies.store import stored_curve
 from gw.explicit import Adhesion, Scene, Topography, compare, gaussian_caps, solve_whole
 from gw.explicit.other_engine import other_engine_forces
+from gw.explicit.patch import force_beyond
 
 EPS, RADIUS, DGAMMA = 0.3e-9, 300e-9, 0.05
 UNIT = np.sqrt(RADIUS * EPS)
@@ -68,7 +68,7 @@ def cap_at_mu_3(pixel=0.05, width=6.0):
                          jump_resolution=0.005 * EPS)
     wall = time.perf_counter() - start
     f_max = result.force_max / FORCE
-    f_max -= _outside(result.d_at_max / EPS, width, mu, -f_max)
+    f_max -= force_beyond(result.d_at_max / EPS, width=width, mu=mu, force=-f_max)
     reference = stored_curve(mu, method="bem", accuracy="default", error_estimate=True)
     jumps = {j.kind: j.d / EPS for j in result.jumps}
     return {"pixel": pixel, "compliance_number": result.model["compliance_number"],
@@ -78,15 +78,6 @@ def cap_at_mu_3(pixel=0.05, width=6.0):
             "jump_in": jumps.get("in"), "bem_jump_in": reference.events.jump_in.delta,
             "jump_out": jumps.get("out"), "bem_jump_out": reference.events.jump_out.delta,
             "status": result.status, "wall_s": wall}
-
-
-def _outside(d, width, mu, force):
-    h, reach = 0.01, 60.0
-    x = (np.arange(int(2 * reach / h)) + 0.5) * h - reach
-    r = np.hypot(x[:, None], x[None, :])
-    beyond = (np.abs(x)[:, None] > width / 2) | (np.abs(x)[None, :] > width / 2)
-    gap = d + r[beyond] ** 2 / 2 + 2 * mu**1.5 * force / r[beyond]
-    return scaled_traction(gap).sum() * h * h / (2 * np.pi)
 
 
 def model_costs():

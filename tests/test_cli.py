@@ -92,7 +92,11 @@ def test_validation_all_writes_its_files(tmp_path):
     summary = json.loads(done.stdout)
     assert sorted(p.name for p in out.iterdir()) == [
         RECORD, "law_comparison.png", "layered", "paper_laws.json", "paper_laws.png", "report.md",
-        "rough_surface.json", "rough_surface.md", "rough_surface.png", "single_asperity"]
+        "rough_explicit", "rough_surface.json", "rough_surface.md", "rough_surface.png",
+        "single_asperity"]
+    assert sorted(p.name for p in (out / "rough_explicit").iterdir()) == [
+        "curves.png", "report.md", "rough_explicit.json"]
+    assert summary["rough_explicit"]["surfaces"] == 1
     assert sorted(p.name for p in (out / "layered").iterdir()) == [
         "layered.json", "map.png", "report.md"]
     assert summary["layered"]["failed"] == []
@@ -115,6 +119,7 @@ def test_validation_all_writes_its_files(tmp_path):
     assert "Paper's law against the solved law" in report
     assert "Single asperity (FE sweeps)" in report
     assert "Layered media" in report
+    assert "Is GW itself right?" in report
     assert list((tmp_path / "cache").glob("bem-draft-mu1-*/result.json"))  # stored for reuse
     table = json.loads((out / "paper_laws.json").read_text())
     assert len(table["rows"]) == 101 and table["constants"]["c_off"] == 1.98
