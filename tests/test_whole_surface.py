@@ -65,7 +65,8 @@ def test_one_cap_gives_the_axisymmetric_curve(mu):
     """Most tensile force on approach, jump-in and jump-out of a cap on a free patch against
     the boundary-integral curve (an independent solver, axisymmetric), the LJ force of the
     rigid cap beyond the patch added: within the two error estimates."""
-    width, pixel = 8.0, 0.1
+    # μ = 0.1 has no jump and a cohesive zone of √(Rε): 0.2 resolves it
+    width, pixel = 8.0, 0.1 if mu > 0.5 else 0.2
     reference = stored_curve(mu, method="bem", accuracy="default", error_estimate=True)
     events = reference.events
     adhesion = adhesion_at(mu)

@@ -87,8 +87,26 @@ class PixelHalfSpace:
 
     def apply_root(self, v):
         """S v for v on `grid`."""
-        return scipy.fft.irfft2(scipy.fft.rfft2(v, workers=FFT_WORKERS) * self.root,
-                                s=self.grid, workers=FFT_WORKERS)
+        return self.inverse(self.forward(v) * self.root)
+
+    def forward(self, v):
+        """The Fourier coefficients (rfft2) of a field on `grid`."""
+        return scipy.fft.rfft2(v, workers=FFT_WORKERS)
+
+    def inverse(self, coefficients):
+        """The field on `grid` of Fourier coefficients (irfft2)."""
+        return scipy.fft.irfft2(coefficients, s=self.grid, workers=FFT_WORKERS)
+
+    @property
+    def parseval(self):
+        """Weights w with Σ a b = Σ w Re(â* b̂) for real fields a, b on `grid` (rfft2 keeps
+        half the last axis: the columns it drops are the conjugates of those it doubles)."""
+        n1 = self.grid[1]
+        column = np.full(n1 // 2 + 1, 2.0)
+        column[0] = 1.0
+        if n1 % 2 == 0:
+            column[-1] = 1.0
+        return column[None, :] / (self.grid[0] * n1)
 
     def on_map(self, v):
         """The map's pixels of a field on `grid`."""
