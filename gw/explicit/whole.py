@@ -32,11 +32,12 @@ from .halfspace import PixelHalfSpace
 from .path import follow
 from .relax import LJMap
 
-#: Largest compliance number c = Δγ a/(π E* ε²) accepted: the pixel a against the cohesive
-#: zone's elastic length E*ε²/Δγ. At μ = 1 (c = μ^1.5 a/π in √(Rε)) c = 0.064 put P̄off 1e-3
-#: and the jumps 4e-3 ε off the boundary integral, halving with c (first order);
-#: test_whole_surface.py. Above it a warning names the pixel needed; above REFUSE times it the
-#: map is refused.
+#: Largest compliance number c = Δγ a/(π E* ε²) without a warning: the pixel a against the
+#: cohesive zone's elastic length E*ε²/Δγ (for caps c = μ^1.5 a/π, a in √(Rε)). One cap against
+#: the boundary integral: at μ = 1, c = 0.064 put P̄off 9e-4 and the jumps 3.5e-3 ε off, c =
+#: 0.032 half that (test_whole_surface.py pins the latter); at μ = 3, c = 0.083 put P̄off 0.019
+#: off (benchmarks/results/rough_surfaces.md), and c = 0.33 advanced the contact ring by ring
+#: of pixels (lattice trapping). Above REFUSE times it the map is refused.
 COMPLIANCE_MAX = 0.1
 #: Largest rms height step between neighbouring pixels (ε): the gap must not change by more
 #: than a fraction of the LJ range (about ε) across a pixel. A cap at μ = 1 with a = 0.2 √(Rε)
