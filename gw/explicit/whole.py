@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from fem_asperity.path.curve import parabola_vertex
-from fem_asperity.plumbing.checks import positive
+from fem_asperity.plumbing.checks import in_range, positive
 from fem_asperity.plumbing.errors import InputError
 
 from .halfspace import PixelHalfSpace
@@ -204,15 +204,16 @@ def solve_whole(topography, adhesion, *, accuracy="default", depth=None, jump_re
     The approach starts with the highest point START_GAP ε from the solid and steps d by
     STEPS[accuracy] ε until the total force turns compressive (or down to `depth`, m, the
     lowest d, if given); the retraction returns over the same separations. `jump_resolution`
-    (m): bisect each jump's d to it. `estimate`: solve again on every other pixel for the
-    error estimate. `progress(fraction)` is called as the solve goes.
+    (m): bisect each jump's d to it. `estimate`: solve again with twice the pixel (2 × 2
+    blocks averaged) for the error estimate. `progress(fraction)` is called as the solve goes.
     """
     if accuracy not in STEPS:
         raise InputError(f"accuracy must be one of {', '.join(STEPS)}; got {accuracy!r}")
     check = check_map(topography, adhesion)
     eps, step = adhesion.eps, STEPS[accuracy]
     top = float(topography.heights.max()) / eps + START_GAP
-    lowest = None if depth is None else float(depth) / eps
+    lowest = None if depth is None else in_range("depth", depth, -np.inf, top * eps,
+                                                  unit="m") / eps  # finite, below the start
     resolution_eps = None if jump_resolution is None else positive(
         "jump_resolution", jump_resolution, "m") / eps
     share = 0.8 if estimate else 1.0
