@@ -87,6 +87,10 @@ def model_costs():
              "error_vs_whole": found.errors[name]} for name, m in found.models.items()]
 
 
+def _cell(value, spec=".4f"):
+    return "-" if value is None else format(value, spec)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     add_output_options(parser)
@@ -124,8 +128,9 @@ def main():
                   "| quantity | whole surface | ± | BEM | ± |", "|---|---|---|---|---|",
                   f"| F̄max (approach) | {cap['f_max']:.4f} | {cap['f_max_estimate']:.1e} | "
                   f"{cap['bem_p_max']:.4f} | {cap['bem_estimate']:.1e} |",
-                  f"| jump-in δ̄o | {cap['jump_in']:.4f} | - | {cap['bem_jump_in']:.4f} | - |",
-                  f"| jump-out δ̄o | {cap['jump_out']:.4f} | - | {cap['bem_jump_out']:.4f} | - |",
+                  f"| jump-in δ̄o | {_cell(cap['jump_in'])} | - | {cap['bem_jump_in']:.4f} | - |",
+                  f"| jump-out δ̄o | {_cell(cap['jump_out'])} | - | {cap['bem_jump_out']:.4f} "
+                  "| - |",
                   "", f"Status {cap['status']}, {cap['wall_s']:.0f} s with its estimate."]
         costs = model_costs()
         data["model_costs"] = costs

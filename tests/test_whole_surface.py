@@ -163,3 +163,18 @@ def test_interacting_summits_tend_to_the_gw_sum_as_they_spread():
         departures.append(abs(path.force.min() - alone.force.min()))
     assert departures[0] > 2 * departures[1] > 4 * departures[2]
     assert departures[2] < 0.01 * abs(alone.force.min())
+
+
+def test_a_soft_solid_starts_far_enough_to_see_its_jump_in():
+    """At μ = 3 a cap jumps in from δ̄o = 4.23 (the BEM), beyond the first start (4 ε): the
+    start moves out until the relaxed map keeps its distance, so the jump-in is on the path."""
+    from gw.explicit.halfspace import PixelHalfSpace
+    from gw.explicit.relax import LJMap
+    from gw.explicit.whole import START_GAP, _far_start
+
+    n, pixel, mu = 30, 0.2, 3.0
+    x = (np.arange(n) - n / 2 + 0.5) * pixel
+    space = PixelHalfSpace.build((n, n), compliance=mu**1.5 * pixel / np.pi, periodic=False)
+    ljmap = LJMap(-(x[:, None] ** 2 + x[None, :] ** 2) / 2, space)
+    assert ljmap.relax(START_GAP, np.zeros(space.grid)).gap.min() < 1.5  # in contact at once
+    assert _far_start(ljmap, START_GAP, space.grid) == 2 * START_GAP

@@ -48,9 +48,12 @@ REFUSE = 8.0
 #: Fewest pixels along a side: the error estimate halves the map, and a contact zone needs a
 #: few pixels on the half map.
 MIN_PIXELS = 16
-#: The approach starts with the highest point this far (ε) from the undeformed solid: the LJ
+#: The approach starts with the highest point this far (ε) from the undeformed solid, or
+#: farther by steps of it until the map relaxed there keeps half of it (`_far_start`): the LJ
 #: traction there, 8/3 · 4⁻³ = 4 % of Δγ/ε at the top only, is the far field.
 START_GAP = 4.0
+#: Times the start is moved out by START_GAP before the map is refused as too soft.
+START_TRIES = 25
 #: Separation step (ε) by accuracy: a jump's d is known to the step (or to `jump_resolution`).
 STEPS = {"draft": 0.2, "default": 0.1, "fine": 0.05}
 #: Most separations of one approach: a map whose load is still tensile after so many steps
@@ -250,6 +253,7 @@ def _solve(heights, pixel, periodic, adhesion, top, step, lowest, resolution_eps
     ljmap = LJMap(heights, space)
     until = None
     if separations is None:
+        top = _far_start(ljmap, top, space.grid)
         separations = top - step * np.arange(MAX_SEPARATIONS)
         if lowest is not None:
             separations = separations[separations >= lowest - 1e-9 * step]
@@ -270,6 +274,19 @@ def _solve(heights, pixel, periodic, adhesion, top, step, lowest, resolution_eps
     return {"approach": approach, "retraction": retraction, "separations": planned,
             "seconds": time.perf_counter() - started, "pixel": pixel,
             "incomplete": until is not None and not until(list(approach.force))}
+
+
+def _far_start(ljmap, top, grid):
+    """The first separation, raised by START_GAP until the map relaxed there stays more than
+    half of it away: a soft solid (μ = 3: a cap jumps in at δ̄o = 4.23) would otherwise start
+    in contact, its jump-in never seen."""
+    for _ in range(START_TRIES):
+        relaxed = ljmap.relax(top, np.zeros(grid))
+        if relaxed.gap.min() > 0.5 * START_GAP:
+            return top
+        top += START_GAP
+    raise InputError(f"the map jumps into contact from {START_GAP * START_TRIES:g} eps away: "
+                     "the solid is too soft for this solver (E* too small beside dgamma/eps)")
 
 
 def _si_path(path, pixel, adhesion):
