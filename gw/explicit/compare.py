@@ -189,6 +189,8 @@ def _padded(values, size):
 
 
 def _curve(d, approach, retraction, jumps, seconds, stopped=None):
+    if d.size == 0:
+        raise InputError("the interacting model found no equilibrium at the first separation")
     f_max, d_max, _ = most_tensile(d, approach)
-    return ModelCurve(d, approach, retraction, f_max, d_max, float(-np.nanmin(retraction)),
-                      jumps, seconds, stopped)
+    f_off = None if np.isnan(retraction).all() else float(-np.nanmin(retraction))
+    return ModelCurve(d, approach, retraction, f_max, d_max, f_off, jumps, seconds, stopped)

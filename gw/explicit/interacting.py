@@ -18,7 +18,10 @@ cascade. Where the coupled branch ends before any summit reaches its own thresho
 neighbours' pull makes the fold come early), the summit nearest its threshold switches. A
 summit switches at most once per separation: where its own jump would take it back past the
 other threshold (on a periodic map its own share of the mean deflection moves it by K_ii ΔP̄),
-it keeps its new state off its branch rather than cycle.
+it keeps its new state off its branch, solved there, rather than cycle within the separation.
+At the next separation it may switch back: in small periodic cells (|K_ii| large, e.g. one cap
+in a cell 8 √(Rε) wide at μ = 1, steps of 0.05 ε) the model then alternates between the two
+laws from one separation to the next, a sign that it does not hold there.
 With K = 0 this is the GW sum over these summits.
 """
 
@@ -151,7 +154,7 @@ class Interacting:
         jump_out = np.inf if self.law.jump_out is None else self.law.jump_out
         return ~attached & (delta <= jump_in), attached & (delta >= jump_out)
 
-    def _solve(self, d, delta, attached):
+    def _solve(self, d, delta, attached, switched):
         """δ̄ with the states held: Newton on δ̄ − (d̄ − z̄) − K P̄(δ̄), each step halved until
         it lowers the largest residual (the laws are steep near a fold) → (δ̄, converged). It
         stops early where a summit passes its threshold: the others' pull took it past its
@@ -161,8 +164,8 @@ class Interacting:
         n = delta.size
         residual = self._residual(d, delta, attached)
         for _ in range(MAX_NEWTON):
-            if any(switch.any() for switch in self._switching(delta, attached)):
-                return delta, True
+            if any((switch & ~switched).any() for switch in self._switching(delta, attached)):
+                return delta, True  # (a summit that switched here may sit off its branch)
             if not self.k.any():
                 return delta - residual, True
             # one-sided, away from where the state's branch ends (attached: above, at the
@@ -212,7 +215,7 @@ class Interacting:
             switched = np.zeros(self.heights.size, bool)
             for _ in range(MAX_SWEEPS):
                 sweeps += 1
-                solved, converged = self._solve(d, delta, attached)
+                solved, converged = self._solve(d, delta, attached, switched)
                 switches = (self._switching(solved, attached) if converged
                             else self._nearest_fold(solved, attached, switched))
                 if switches is None:

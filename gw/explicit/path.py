@@ -112,14 +112,15 @@ def follow(ljmap, separations, y0, *, jump_resolution=None, until=None, progress
         if until is not None and until(force):
             break
         new, jumped = walker.relax(d)
-        if jumped:
+        while jumped:  # each jump in the step, located and recorded in turn
             new, d_jump = _bisect(walker, d, new, jump_resolution)
             predicted = walker.ljmap.gap(walker.predicted(d_jump), d_jump)
             jumps.extend(_patches(predicted, new, walker.d, d_jump))
-            if d_jump != d:  # the jump's landing is a state of the path too
-                walker.accept(d_jump, new, jumped=True)
-                _record(new, d_jump, d_out, force, contact)
-                new, jumped = walker.relax(d)
+            if d_jump == d:
+                break
+            walker.accept(d_jump, new, jumped=True)  # the landing is a state of the path too
+            _record(new, d_jump, d_out, force, contact)
+            new, jumped = walker.relax(d)
         walker.accept(d, new, jumped=jumped)
         _record(new, d, d_out, force, contact)
         if progress is not None:

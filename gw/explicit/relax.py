@@ -7,10 +7,11 @@ point of the energy per pixel area, in Δγ,
     E(y) = ½|y|² + Σ φ̄(h),    w = S y,    S = (cG)^(1/2)   (`halfspace.PixelHalfSpace`),
 
 whose gradient y + S p̄ vanishes where w = −cG p̄. `relax` descends to a local minimum (a stable
-state) from a given state by a trust-region Newton-CG (Steihaug: a direction of negative curvature
-is followed to the trust region's edge, so an unstable start leaves the saddle): a warm start from
-the previous separation stays on its branch while the branch is stable and falls to another where
-it ends, which is a jump.
+state) from a given state by Newton-CG with a backtracking line search; where the conjugate
+gradients meet a direction of non-positive curvature, that direction is followed downhill with a
+line search that expands while the energy falls, so an unstable start leaves the saddle: a warm
+start from the previous separation stays on its branch while the branch is stable and falls to
+another where it ends, which is a jump.
 """
 
 from dataclasses import dataclass
@@ -22,8 +23,9 @@ from fem_asperity.closed_forms.lj import (
     scaled_traction,
     scaled_traction_slope,
 )
+from fem_asperity.plumbing.errors import ContinuationError
 
-#: Gaps below this (ε) are refused by the energy (+inf, so the trust region shrinks): the LJ
+#: Gaps below this (ε) are refused by the energy (+inf, so the line search halves): the LJ
 #: repulsion there, 8/3 h̄⁻⁹ > 5e6 Δγ/ε, is far beyond any load a separation step asks for.
 GAP_FLOOR = 0.2
 #: Converged where the largest residual of w + cG p̄, i.e. |S ∇E|, is below this (ε): 1e-9 ε
@@ -90,7 +92,8 @@ class LJMap:
         products, y = self.products, y0
         energy, gradient = self._energy(y, d)
         if not np.isfinite(energy):
-            raise ValueError(f"the start state at d = {d:g} has a gap below {GAP_FLOOR}")
+            raise ContinuationError(f"the start state at d = {d:g} eps has a gap below "
+                                    f"{GAP_FLOOR} eps")
         converged = unstable = False
         step = 0
         while step < MAX_STEPS:
@@ -165,7 +168,7 @@ class LJMap:
                 break
             t *= 0.5
         else:
-            raise ArithmeticError(f"no descent at d = {d:g}: the state cannot be relaxed")
+            raise ContinuationError(f"no descent at d = {d:g} eps: the state cannot be relaxed")
         while expand:
             e_far, g_far = self._energy(y + 2.0 * t * direction, d)
             if not e_far < e_new:

@@ -47,6 +47,9 @@ COMPLIANCE_MAX = 0.05
 HEIGHT_STEP_MAX = 0.5
 #: A map this much coarser than either bound is refused, not warned about.
 REFUSE = 8.0
+#: Most pixels of a map: its free grid (four times the map) then holds 1.7e7 doubles per field
+#: and the solve takes hours (benchmarks/results/rough_surfaces.md: 254 s for 256² free).
+MAX_PIXELS = 2048**2
 #: Fewest pixels along a side: the error estimate halves the map, and a contact zone needs a
 #: few pixels on the half map.
 MIN_PIXELS = 16
@@ -122,6 +125,9 @@ def resolution(topography, adhesion):
 def check_map(topography, adhesion):
     """The map's `Resolution`, after refusing (InputError) a map with fewer than MIN_PIXELS
     along a side or a pixel more than REFUSE times too coarse."""
+    if topography.heights.size > MAX_PIXELS:
+        raise InputError(f"the map has {topography.heights.size} pixels, more than "
+                         f"{MAX_PIXELS} (2048^2): crop it or coarsen it")
     if min(topography.heights.shape) < MIN_PIXELS:
         raise InputError(f"the map must have at least {MIN_PIXELS} pixels along each side "
                          f"to hold a contact and its error estimate; got "
@@ -238,7 +244,8 @@ def solve_whole(topography, adhesion, *, accuracy="default", depth=None, jump_re
 
 def coarsened(heights):
     """The map seen with twice the pixel: the mean of each 2 × 2 block (an odd last row or
-    column dropped)."""
+    column dropped: on an odd map the estimate's map is one pixel smaller, and its estimate
+    correspondingly larger)."""
     n1, n2 = (n - n % 2 for n in heights.shape)
     return heights[:n1, :n2].reshape(n1 // 2, 2, n2 // 2, 2).mean(axis=(1, 3))
 
