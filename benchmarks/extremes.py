@@ -10,7 +10,7 @@ import argparse
 import sys
 import time
 
-from provenance import add_output_options, provenance, write_results
+from provenance import add_output_options, cell, provenance, write_results
 
 from fem_asperity.plumbing.cli import ProgressBar
 from fem_asperity.solver.solve import solve_curve
@@ -41,10 +41,6 @@ def one(label, mu, method, accuracy, estimate, spring):
             "delta_o_star_err": estimate.get("delta_o_star")}
 
 
-def _cell(value, spec=".1e"):
-    return "-" if value is None else format(value, spec)
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     add_output_options(parser)
@@ -55,8 +51,8 @@ def main():
              "| run | wall s | status | points | Newton iterations | P̄off | ± | δ̄o* | ± |",
              "|---|---|---|---|---|---|---|---|---|"]
     lines += [f"| {r['run']} | {r['wall_s']:.1f} | {r['status']} | {r['points']} | "
-              f"{r['newton_iterations']} | {r['p_off']:.6f} | {_cell(r['p_off_err'])} | "
-              f"{_cell(r['delta_o_star'], '.4f')} | {_cell(r['delta_o_star_err'])} |"
+              f"{r['newton_iterations']} | {r['p_off']:.6f} | {cell(r['p_off_err'], '.1e')} | "
+              f"{cell(r['delta_o_star'], '.4f')} | {cell(r['delta_o_star_err'], '.1e')} |"
               for r in rows]
     paths = write_results("extremes", "The cost at the ends of the solved ranges", prov, lines,
                           {"rows": rows}, out=args.out, quick=args.quick)

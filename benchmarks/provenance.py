@@ -80,3 +80,8 @@ def write_results(name, title, prov, markdown, data, *, out=RESULTS, quick=False
     payload = json.dumps(_finite({"provenance": prov, **data}), indent=2, allow_nan=False) + "\n"
     out = Path(out)
     return write_atomic(out / f"{stem}.md", text), write_atomic(out / f"{stem}.json", payload)
+
+
+def cell(value, spec):
+    """A table cell: `value` formatted with `spec`, or "-" where there is none."""
+    return "-" if value is None else format(value, spec)

@@ -12,7 +12,7 @@ import sys
 import time
 
 import numpy as np
-from provenance import add_output_options, provenance, write_results
+from provenance import add_output_options, cell, provenance, write_results
 
 from fem_asperity.studies.store import stored_curve
 from gw.explicit import Adhesion, Scene, Topography, compare, gaussian_caps, solve_whole
@@ -87,17 +87,13 @@ def model_costs():
              "error_vs_whole": found.errors[name]} for name, m in found.models.items()]
 
 
-def _cell(value, spec=".4f"):
-    return "-" if value is None else format(value, spec)
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     add_output_options(parser)
     args = parser.parse_args()
     prov = provenance()
-    # (n, periodic, with the other engine): its free 256² solve is left out (its 64² free took
-    # three times ours; see the 128² rows)
+    # (n, periodic, with the other engine): its free 256² solve is left out (the free 128² row
+    # shows it several times slower than ours there)
     maps = ([(64, False, True)] if args.quick else
             [(128, False, True), (128, True, True), (256, False, False), (256, True, True)])
     engines = []
@@ -128,8 +124,9 @@ def main():
                   "| quantity | whole surface | ± | BEM | ± |", "|---|---|---|---|---|",
                   f"| F̄max (approach) | {cap['f_max']:.4f} | {cap['f_max_estimate']:.1e} | "
                   f"{cap['bem_p_max']:.4f} | {cap['bem_estimate']:.1e} |",
-                  f"| jump-in δ̄o | {_cell(cap['jump_in'])} | - | {cap['bem_jump_in']:.4f} | - |",
-                  f"| jump-out δ̄o | {_cell(cap['jump_out'])} | - | {cap['bem_jump_out']:.4f} "
+                  f"| jump-in δ̄o | {cell(cap['jump_in'], '.4f')} | - | "
+                  f"{cap['bem_jump_in']:.4f} | - |",
+                  f"| jump-out δ̄o | {cell(cap['jump_out'], '.4f')} | - | {cap['bem_jump_out']:.4f} "
                   "| - |",
                   "", f"Status {cap['status']}, {cap['wall_s']:.0f} s with its estimate."]
         costs = model_costs()
