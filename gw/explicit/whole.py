@@ -34,13 +34,11 @@ from .relax import LJMap
 
 #: Largest compliance number c = Δγ a/(π E* ε²) without a warning: the pixel a against the
 #: cohesive zone's elastic length E*ε²/Δγ (for caps c = μ^1.5 a/π, a in √(Rε)). One cap against
-#: the boundary integral: at μ = 1, c = 0.064 put F̄max 8.5e-4 and the jumps 3.5e-3 ε off, c =
-#: 0.032 half that (test_whole_surface.py pins the latter); at μ = 3, c = 0.083 put F̄max 1.1 %
-#: off, outside its estimate, and the contact peeled off ring by ring of pixels with no single
-#: jump-out (benchmarks/results/rough_surfaces.md); c = 0.33 advanced it ring by ring on
-#: approach too (lattice trapping). So 0.05: conservative at μ = 1, below what failed at μ = 3.
-#: Above REFUSE times it the map is refused.
-COMPLIANCE_MAX = 0.05
+#: the boundary integral: at μ = 1, c = 0.064 put F̄max 8.5e-4 off, c = 0.032 half that
+#: (test_whole_surface.py pins the latter); at μ = 3, c = 0.099 on a patch 12 √(Rε) wide put it
+#: 2e-4 off (benchmarks/rough_surfaces.py); c = 0.33 advanced the contact ring by ring of
+#: pixels (lattice trapping). Above REFUSE times it the map is refused.
+COMPLIANCE_MAX = 0.1
 #: Largest rms height step between neighbouring pixels (ε): the gap must not change by more
 #: than a fraction of the LJ range (about ε) across a pixel. A cap at μ = 1 with a = 0.2 √(Rε)
 #: steps by 0.3-0.5 ε where its gap is 1-2.5 ε and was within 1e-3 of the reference.
