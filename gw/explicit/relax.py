@@ -46,8 +46,7 @@ CG_MAX = 400
 @dataclass(frozen=True)
 class Relaxed:
     """A state at one separation: `y` (the unknowns), `gap` (ε, on the map), `traction`
-    (Δγ/ε), `steps` (Newton steps), `products` (Hessian products), `converged`, and
-    `unstable`: the descent met a state that was not stable (it left a branch: a jump)."""
+    (Δγ/ε), `steps` (Newton steps), `products` (Hessian products), `converged`."""
 
     y: np.ndarray
     gap: np.ndarray
@@ -55,7 +54,6 @@ class Relaxed:
     steps: int
     products: int
     converged: bool
-    unstable: bool
 
 
 class LJMap:
@@ -94,20 +92,18 @@ class LJMap:
         if not np.isfinite(energy):
             raise ContinuationError(f"the start state at d = {d:g} eps has a gap below "
                                     f"{GAP_FLOOR} eps")
-        converged = unstable = False
+        converged = False
         step = 0
         while step < MAX_STEPS:
             step += 1
             direction, descent_only = self._newton_direction(y, gradient, d)
-            unstable |= descent_only
             y, energy, gradient = self._line_search(y, energy, gradient, direction, d,
                                                     expand=descent_only)
             if not descent_only and self._residual(gradient) <= TOLERANCE:
                 converged = True
                 break
         gap = self.gap(y, d)
-        return Relaxed(y, gap, scaled_traction(gap), step, self.products - products, converged,
-                       unstable)
+        return Relaxed(y, gap, scaled_traction(gap), step, self.products - products, converged)
 
     def _residual(self, gradient):
         """max |S ∇E| (ε): how far w is from −cG p̄."""
