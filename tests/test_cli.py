@@ -81,15 +81,23 @@ def test_scales_json():
 
 
 @pytest.mark.slow
-def test_validation_all_writes_its_files(tmp_path):
+def test_validation_all_writes_its_files(tmp_path, monkeypatch, capsys):
+    """`validation all` end to end, in this process so that the layered map can be cut to the
+    one point `test_layered.py` solves (its 16 layers x 3 mu were two thirds of this test's
+    time; that map is the layered tests' to check, the composition of the report is this one's)."""
+    from validation import layered
+    from validation.__main__ import main
+
     out = tmp_path / "out"
+    monkeypatch.setenv("ADHESION_CACHE", str(tmp_path / "cache"))
+    for name, value in (("MUS", (1.0,)), ("THICKNESSES", (1.0,)), ("RATIOS", (0.5,)),
+                        ("FE_CHECKS", ((1.0, 1.0, 0.5),)), ("ROUGH_LAYERS", ((1.0, 0.5),))):
+        monkeypatch.setattr(layered, name, value)
     # The BEM judged (the FE is its cross-check, solved without estimates): the FE sweep with
     # estimates costs minutes at μ = 3-5.
-    done = cli("validation", "all", "--out", str(out), "--json", "--compare-mu", "1",
-               "--accuracy", "draft", "--method", "bem",
-               env={"ADHESION_CACHE": str(tmp_path / "cache")})
-    assert done.returncode == 0, done.stderr
-    summary = json.loads(done.stdout)
+    assert main(["all", "--out", str(out), "--json", "--compare-mu", "1", "--accuracy", "draft",
+                 "--method", "bem"]) == 0
+    summary = json.loads(capsys.readouterr().out)
     assert sorted(p.name for p in out.iterdir()) == [
         RECORD, "law_comparison.png", "layered", "paper_laws.json", "paper_laws.png", "report.md",
         "rough_explicit", "rough_surface.json", "rough_surface.md", "rough_surface.png",

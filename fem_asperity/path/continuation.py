@@ -293,7 +293,12 @@ class Linearisation:
 
     def _solve_factored(self, rhs):
         if self._cho is None:
-            return lu_solve(self._lu, rhs.astype(np.float32), check_finite=False).astype(float)
+            # A refinement on a nearly singular factorisation can grow past float32's range: the
+            # cast gives inf, which `correct` takes for the failed step it is (and retries
+            # shorter), so the overflow is not worth a warning on the user's terminal.
+            with np.errstate(over="ignore"):
+                single = rhs.astype(np.float32)
+            return lu_solve(self._lu, single, check_finite=False).astype(float)
         a = self._cho.solve(rhs[:-1])
         dd = (rhs[-1] - self._border @ a) / self._denominator
         return np.append(a - dd * self._b, dd)
