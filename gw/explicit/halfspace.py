@@ -97,6 +97,24 @@ class PixelHalfSpace:
         """The field on `grid` of Fourier coefficients (irfft2)."""
         return scipy.fft.irfft2(coefficients, s=self.grid, workers=FFT_WORKERS)
 
+    def from_map(self, field):
+        """The Fourier coefficients of a field on the map placed on `grid` (zero outside it):
+        `forward` of the zero-padded field, without transforming the padding's zero rows (a
+        quarter of the work on a free map). Single precision in, single precision out."""
+        if self.periodic:
+            return self.forward(field)
+        rows = scipy.fft.rfft(field, n=self.grid[1], axis=1, workers=FFT_WORKERS)
+        return scipy.fft.fft(rows, n=self.grid[0], axis=0, workers=FFT_WORKERS)
+
+    def to_map(self, coefficients):
+        """The map's pixels of the field with these coefficients: `inverse(·)` cut to the map,
+        without transforming the rows that would be cut off."""
+        if self.periodic:
+            return self.inverse(coefficients)
+        rows = scipy.fft.ifft(coefficients, axis=0, workers=FFT_WORKERS)[: self.shape[0]]
+        field = scipy.fft.irfft(rows, n=self.grid[1], axis=1, workers=FFT_WORKERS)
+        return field[:, : self.shape[1]]
+
     @property
     def parseval(self):
         """Weights w with Σ a b = Σ w Re(â* b̂) for real fields a, b on `grid` (rfft2 keeps
@@ -108,18 +126,6 @@ class PixelHalfSpace:
             column[-1] = 1.0
         return column[None, :] / (self.grid[0] * n1)
 
-    def on_map(self, v):
-        """The map's pixels of a field on `grid`."""
-        return v[: self.shape[0], : self.shape[1]]
-
-    def padded(self, field):
-        """A field on the map placed on `grid` (zero outside the map)."""
-        if self.periodic:
-            return field
-        out = np.zeros(self.grid)
-        out[: self.shape[0], : self.shape[1]] = field
-        return out
-
     def deflection(self, traction):
         """w = −c G p̄ on the map (ε) for a traction p̄ on the map (Δγ/ε)."""
-        return -self.on_map(self.apply_root(self.apply_root(self.padded(traction))))
+        return -self.to_map(self.from_map(traction) * self.root**2)

@@ -6,7 +6,8 @@ point of the energy per pixel area, in Δγ,
 
     E(y) = ½|y|² + Σ φ̄(h),    w = S y,    S = (cG)^(1/2)   (`halfspace.PixelHalfSpace`),
 
-whose gradient y + S p̄ vanishes where w = −cG p̄. `relax` descends to a local minimum (a stable
+whose gradient y + S p̄ vanishes where w = −cG p̄. States and gradients are kept as Fourier
+coefficients, where S is diagonal. `relax` descends to a local minimum (a stable
 state) from a given state by Newton-CG with a backtracking line search; where the conjugate
 gradients meet a direction of non-positive curvature, that direction is followed downhill with a
 line search that expands while the energy falls, so an unstable start leaves the saddle: a warm
@@ -45,8 +46,9 @@ CG_MAX = 400
 
 @dataclass(frozen=True)
 class Relaxed:
-    """A state at one separation: `y` (the unknowns), `gap` (ε, on the map), `traction`
-    (Δγ/ε), `steps` (Newton steps), `products` (Hessian products), `converged`."""
+    """A state at one separation: `y` (the unknowns, as the Fourier coefficients of y on the
+    half-space's grid), `gap` (ε, on the map), `traction` (Δγ/ε), `steps` (Newton steps),
+    `products` (Hessian products), `converged`."""
 
     y: np.ndarray
     gap: np.ndarray
@@ -56,78 +58,97 @@ class Relaxed:
     converged: bool
 
 
+@dataclass(frozen=True)
+class _Point:
+    """A state evaluated at one separation: `y` (coefficients), `gap`, `energy` (Δγ per pixel
+    area), `gradient` (the coefficients of ∇E)."""
+
+    y: np.ndarray
+    gap: np.ndarray
+    energy: float
+    gradient: np.ndarray
+
+
 class LJMap:
-    """The rigid map `heights` (ε) over `halfspace` (a `PixelHalfSpace` of the same shape)."""
+    """The rigid map `heights` (ε) over `halfspace` (a `PixelHalfSpace` of the same shape).
+    States are kept as Fourier coefficients: S is diagonal there, so an evaluation of the
+    energy and its gradient takes two FFTs (the gap's and the traction's) and a Newton step's
+    right-hand side none."""
 
     def __init__(self, heights, halfspace):
         self.heights = np.asarray(heights, dtype=float)
         self.halfspace = halfspace
         self.products = 0
+        self._weights = halfspace.parseval
+
+    def rest(self):
+        """The undeformed state (w = 0)."""
+        return np.zeros_like(self.halfspace.root, dtype=complex)
 
     def gap(self, y, d):
         """h = d − z − S y on the map (ε)."""
-        return d - self.heights - self.halfspace.on_map(self.halfspace.apply_root(y))
+        return d - self.heights - self.halfspace.to_map(self.halfspace.root * y)
 
     def admissible(self, y, d):
         """Whether every gap of the state `y` at `d` is above GAP_FLOOR."""
         return bool(self.gap(y, d).min() >= GAP_FLOOR)
 
-    def _energy(self, y, d):
+    def _dot(self, a, b):
+        """Σ a b of the real fields with coefficients a, b."""
+        return float(np.sum(self._weights * (a.real * b.real + a.imag * b.imag)))
+
+    def _evaluate(self, y, d):
+        """The `_Point` of `y` at `d` (energy +inf where a gap is below the floor)."""
         h = self.gap(y, d)
         if h.min() < GAP_FLOOR:
-            return np.inf, np.zeros_like(y)
-        gradient = y + self.halfspace.apply_root(self.halfspace.padded(scaled_traction(h)))
-        return 0.5 * float(y.ravel() @ y.ravel()) + float(scaled_potential(h).sum()), gradient
-
-    def _hessian_product(self, y, v, d):
-        self.products += 1
+            return _Point(y, h, np.inf, None)
         space = self.halfspace
-        slope = scaled_traction_slope(self.gap(y, d))
-        return v - space.apply_root(space.padded(slope * space.on_map(space.apply_root(v))))
+        energy = 0.5 * self._dot(y, y) + float(scaled_potential(h).sum())
+        return _Point(y, h, energy, y + space.root * space.from_map(scaled_traction(h)))
 
     def relax(self, d, y0):
-        """The stable state reached from `y0` at separation `d` (ε) → `Relaxed`."""
-        products, y = self.products, y0
-        energy, gradient = self._energy(y, d)
-        if not np.isfinite(energy):
+        """The stable state reached from `y0` (coefficients) at separation `d` (ε) →
+        `Relaxed`."""
+        products = self.products
+        point = self._evaluate(y0, d)
+        if not np.isfinite(point.energy):
             raise ContinuationError(f"the start state at d = {d:g} eps has a gap below "
                                     f"{GAP_FLOOR} eps")
         converged = False
         step = 0
         while step < MAX_STEPS:
             step += 1
-            direction, descent_only = self._newton_direction(y, gradient, d)
-            y, energy, gradient = self._line_search(y, energy, gradient, direction, d,
-                                                    expand=descent_only)
-            if not descent_only and self._residual(gradient) <= TOLERANCE:
+            direction, descent_only = self._newton_direction(point)
+            point = self._line_search(point, direction, d, expand=descent_only)
+            if not descent_only and self._residual(point.gradient) <= TOLERANCE:
                 converged = True
                 break
-        gap = self.gap(y, d)
-        return Relaxed(y, gap, scaled_traction(gap), step, self.products - products, converged)
+        return Relaxed(point.y, point.gap, scaled_traction(point.gap), step,
+                       self.products - products, converged)
 
     def _residual(self, gradient):
         """max |S ∇E| (ε): how far w is from −cG p̄."""
-        return float(np.abs(self.halfspace.apply_root(gradient)).max())
+        return float(np.abs(self.halfspace.inverse(self.halfspace.root * gradient)).max())
 
-    def _newton_direction(self, y, gradient, d):
+    def _newton_direction(self, point):
         """(s, unstable): s solves H s = −∇E by conjugate gradients (to a relative residual
         min(NEWTON_FORCING, √|∇E|)); where H shows a direction of non-positive curvature the
         state is not stable, and that direction (downhill), or −∇E if it comes first, is
-        returned with unstable = True. The iteration runs on the vectors' Fourier coefficients,
-        where S is diagonal: a product H v then takes two FFTs, not four."""
-        slope = scaled_traction_slope(self.gap(y, d))
-        space = self.halfspace
-        root, weights = space.root, space.parseval
+        returned with unstable = True. A product H v takes two FFTs; its S D S part is
+        computed in single precision (a fraction of double's time): the direction only needs a
+        relative residual of NEWTON_FORCING, and a Hessian off by ~1e-7 does not move the
+        converged state, which the double-precision gradient decides."""
+        space, dot = self.halfspace, self._dot
+        root = space.root
+        root_single = root.astype(np.float32)
+        slope = scaled_traction_slope(point.gap).astype(np.float32)
 
-        def product(v):  # H v, in Fourier coefficients
+        def product(v):  # H v; S D S in single precision
             self.products += 1
-            half = space.on_map(space.inverse(root * v))
-            return v - root * space.forward(space.padded(slope * half))
+            half = space.to_map(v.astype(np.complex64) * root_single)
+            return v - root * space.from_map(slope * half)
 
-        def dot(a, b):  # the real fields' Σ a b
-            return float(np.sum(weights * (a.real * b.real + a.imag * b.imag)))
-
-        b = space.forward(-gradient)
+        b = -point.gradient
         norm_b = np.sqrt(dot(b, b))
         target = min(NEWTON_FORCING, np.sqrt(norm_b)) * norm_b
         x, r = np.zeros_like(b), b.copy()
@@ -137,8 +158,8 @@ class LJMap:
             curvature = dot(p, hp)
             if curvature <= 0.0:
                 if not x.any():
-                    return -gradient, True
-                return space.inverse(p if dot(p, b) >= 0.0 else -p), True
+                    return b, True
+                return (p if dot(p, b) >= 0.0 else -p), True
             alpha = rr / curvature
             x += alpha * p
             r -= alpha * hp
@@ -147,27 +168,29 @@ class LJMap:
                 break
             p = r + (rr_new / rr) * p
             rr = rr_new
-        return space.inverse(x), False
+        return x, False
 
-    def _line_search(self, y, energy, gradient, direction, d, *, expand):
-        """The step along `direction`: the full step where it lowers the energy (or, within
+    def _line_search(self, point, direction, d, *, expand):
+        """The point along `direction`: the full step where it lowers the energy (or, within
         rounding of the energy, the gradient), halved until it does; where `expand`
         (unstable), doubled while the energy keeps falling (a jump moves the state far)."""
-        slope = float(np.sum(gradient * direction))
-        norm_g = float(np.sum(gradient * gradient))
+        slope = self._dot(point.gradient, direction)
+        norm_g = self._dot(point.gradient, point.gradient)
         t = 1.0
         while t > 1e-14:
-            e_new, g_new = self._energy(y + t * direction, d)
-            rounding = 1e-12 * (abs(energy) + abs(e_new))
-            if np.isfinite(e_new) and (e_new <= energy + 1e-4 * t * slope or (
-                    abs(e_new - energy) <= rounding and np.sum(g_new * g_new) < norm_g)):
+            new = self._evaluate(point.y + t * direction, d)
+            rounding = 1e-12 * (abs(point.energy) + abs(new.energy))
+            if np.isfinite(new.energy) and (
+                    new.energy <= point.energy + 1e-4 * t * slope
+                    or (abs(new.energy - point.energy) <= rounding
+                        and self._dot(new.gradient, new.gradient) < norm_g)):
                 break
             t *= 0.5
         else:
             raise ContinuationError(f"no descent at d = {d:g} eps: the state cannot be relaxed")
         while expand:
-            e_far, g_far = self._energy(y + 2.0 * t * direction, d)
-            if not e_far < e_new:
+            far = self._evaluate(point.y + 2.0 * t * direction, d)
+            if not far.energy < new.energy:
                 break
-            t, e_new, g_new = 2.0 * t, e_far, g_far
-        return y + t * direction, e_new, g_new
+            t, new = 2.0 * t, far
+        return new

@@ -260,7 +260,7 @@ def _solve(heights, pixel, periodic, adhesion, top, step, lowest, resolution_eps
     ljmap = LJMap(heights, space)
     until = None
     if separations is None:
-        top = _far_start(ljmap, top, space.grid)
+        top = _far_start(ljmap, top)
         separations = top - step * np.arange(MAX_SEPARATIONS)
         if lowest is not None:
             separations = separations[separations >= lowest - 1e-9 * step]
@@ -272,7 +272,7 @@ def _solve(heights, pixel, periodic, adhesion, top, step, lowest, resolution_eps
     def approach_progress(fraction):
         progress(0.5 * min(fraction * separations.size / expected, 0.99))
 
-    approach, y = follow(ljmap, separations, np.zeros(space.grid),
+    approach, y = follow(ljmap, separations, ljmap.rest(),
                          jump_resolution=resolution_eps, until=until,
                          progress=approach_progress if progress else None)
     planned = separations[separations >= approach.d.min() - 1e-9 * step]
@@ -283,12 +283,12 @@ def _solve(heights, pixel, periodic, adhesion, top, step, lowest, resolution_eps
             "incomplete": until is not None and not until(list(approach.force))}
 
 
-def _far_start(ljmap, top, grid):
+def _far_start(ljmap, top):
     """The first separation, raised by START_GAP until the map relaxed there stays more than
     half of it away: a soft solid (μ = 3: a cap jumps in at δ̄o = 4.23) would otherwise start
     in contact, its jump-in never seen."""
     for _ in range(START_TRIES):
-        relaxed = ljmap.relax(top, np.zeros(grid))
+        relaxed = ljmap.relax(top, ljmap.rest())
         if relaxed.gap.min() > 0.5 * START_GAP:
             return top
         top += START_GAP
