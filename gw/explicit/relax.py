@@ -80,6 +80,12 @@ class LJMap:
         self.halfspace = halfspace
         self.products = 0
         self._weights = halfspace.parseval
+        # The conjugate gradients run on u = √w ŷ (w: `parseval`), where Σ a b of the fields is
+        # the plain complex dot product (BLAS, no temporaries); S is folded into the scaling.
+        scale = np.sqrt(self._weights)
+        self._scale = scale
+        self._root_in = (halfspace.root / scale).astype(np.float32)
+        self._root_out = halfspace.root * scale
 
     def rest(self):
         """The undeformed state (w = 0)."""
@@ -95,7 +101,7 @@ class LJMap:
 
     def _dot(self, a, b):
         """Σ a b of the real fields with coefficients a, b."""
-        return float(np.sum(self._weights * (a.real * b.real + a.imag * b.imag)))
+        return float(np.vdot(self._weights * a, b).real)
 
     def _evaluate(self, y, d):
         """The `_Point` of `y` at `d` (energy +inf where a gap is below the floor)."""
@@ -138,17 +144,19 @@ class LJMap:
         computed in single precision (a fraction of double's time): the direction only needs a
         relative residual of NEWTON_FORCING, and a Hessian off by ~1e-7 does not move the
         converged state, which the double-precision gradient decides."""
-        space, dot = self.halfspace, self._dot
-        root = space.root
-        root_single = root.astype(np.float32)
+        space = self.halfspace
+        root_in, root_out = self._root_in, self._root_out
         slope = scaled_traction_slope(point.gap).astype(np.float32)
 
-        def product(v):  # H v; S D S in single precision
+        def product(u):  # H v for u = √w v; S D S in single precision
             self.products += 1
-            half = space.to_map(v.astype(np.complex64) * root_single)
-            return v - root * space.from_map(slope * half)
+            half = space.to_map(u.astype(np.complex64) * root_in)
+            return u - root_out * space.from_map(slope * half)
 
-        b = -point.gradient
+        def dot(a, b):
+            return float(np.vdot(a, b).real)
+
+        b = -point.gradient * self._scale
         norm_b = np.sqrt(dot(b, b))
         target = min(NEWTON_FORCING, np.sqrt(norm_b)) * norm_b
         x, r = np.zeros_like(b), b.copy()
@@ -158,8 +166,8 @@ class LJMap:
             curvature = dot(p, hp)
             if curvature <= 0.0:
                 if not x.any():
-                    return b, True
-                return (p if dot(p, b) >= 0.0 else -p), True
+                    return -point.gradient, True
+                return (p if dot(p, b) >= 0.0 else -p) / self._scale, True
             alpha = rr / curvature
             x += alpha * p
             r -= alpha * hp
@@ -168,7 +176,7 @@ class LJMap:
                 break
             p = r + (rr_new / rr) * p
             rr = rr_new
-        return x, False
+        return x / self._scale, False
 
     def _line_search(self, point, direction, d, *, expand):
         """The point along `direction`: the full step where it lowers the energy (or, within
