@@ -176,5 +176,27 @@ def test_a_soft_solid_starts_far_enough_to_see_its_jump_in():
     x = (np.arange(n) - n / 2 + 0.5) * pixel
     space = PixelHalfSpace.build((n, n), compliance=mu**1.5 * pixel / np.pi, periodic=False)
     ljmap = LJMap(-(x[:, None] ** 2 + x[None, :] ** 2) / 2, space)
-    assert ljmap.relax(START_GAP, np.zeros(space.grid)).gap.min() < 1.5  # in contact at once
-    assert _far_start(ljmap, START_GAP, space.grid) == 2 * START_GAP
+    assert ljmap.relax(START_GAP, ljmap.rest()).gap.min() < 1.5  # in contact at once
+    assert _far_start(ljmap, START_GAP) == 2 * START_GAP
+
+
+def test_a_jump_across_a_periodic_edge_is_one_jump():
+    """One cap centred on the corner of a periodic cell jumps as the same cap centred in the
+    cell does: one patch in, one out, at the same separations, centred on the corner. (The
+    cell is 12 √(Rε) wide: in one 8 wide the lattice of images shrinks the jump-in at μ = 1 below
+    JUMP_CHANGE.)"""
+    pixel, n = 0.2, 60
+    x = np.arange(n) * pixel
+    corner = np.minimum(x, n * pixel - x)  # distance to the corner on the torus, √(Rε)
+    middle = np.abs(x - n * pixel / 2)
+    jumps = []
+    for r in (corner, middle):
+        z = -(r[:, None] ** 2 + r[None, :] ** 2) / 2 * EPS
+        surface = Topography(heights=z, pixel=pixel * UNIT, periodic=True, source="one cap")
+        jumps.append(solve_whole(surface, adhesion_at(1.0), estimate=False,
+                                 jump_resolution=0.01 * EPS).jumps)
+    assert [j.kind for j in jumps[0]] == [j.kind for j in jumps[1]] == ["in", "out"]
+    for on_corner, in_middle in zip(*jumps):
+        assert on_corner.d == in_middle.d and on_corner.area == in_middle.area
+        assert np.allclose((on_corner.x, on_corner.y), 0.0, atol=1e-6 * UNIT)
+        assert np.allclose((in_middle.x, in_middle.y), n / 2 * pixel * UNIT)

@@ -115,7 +115,9 @@ def follow(ljmap, separations, y0, *, jump_resolution=None, until=None, progress
         while jumped:  # each jump in the step, located and recorded in turn
             new, d_jump = _bisect(walker, d, new, jump_resolution)
             predicted = walker.ljmap.gap(walker.predicted(d_jump), d_jump)
-            jumps.extend(_patches(predicted, new, walker.d, d_jump))
+            stayed = walker.ljmap.gap(walker.y, d_jump)  # the state before, moved by the step
+            jumps.extend(_patches(predicted, stayed, new, walker.d, d_jump,
+                                  periodic=ljmap.halfspace.periodic))
             if d_jump == d:
                 break
             walker.accept(d_jump, new, jumped=True)  # the landing is a state of the path too
@@ -159,20 +161,56 @@ def _departure(predicted_gap, gap):
     return float(np.abs(gap - predicted_gap)[near].max(initial=0.0))
 
 
-def _patches(predicted_gap, landed, d_before, d_after):
+def _patches(predicted_gap, stayed_gap, landed, d_before, d_after, *, periodic):
     """The jumps in one step: connected patches of pixels whose gap left the prediction by
-    more than JUMP_CHANGE (within JUMP_RANGE of the map)."""
-    change = landed.gap - predicted_gap
+    more than JUMP_CHANGE (within JUMP_RANGE of the map); on a `periodic` map a patch that
+    crosses an edge is one patch, its centre taken on the torus. Its kind and force change are
+    measured from `stayed_gap` (the state before the step, moved rigidly to the new
+    separation), not from the prediction: near a fold the secant can overshoot the landing, and
+    a jump-in would read as a jump-out."""
+    change = landed.gap - stayed_gap
     near = np.minimum(predicted_gap, landed.gap) < JUMP_RANGE
-    labels, count = ndimage.label((np.abs(change) > JUMP_CHANGE) & near)
+    labels, count = ndimage.label((np.abs(landed.gap - predicted_gap) > JUMP_CHANGE) & near)
+    if periodic:
+        labels, count = _joined_across_edges(labels)
     jumps = []
     for k in range(1, count + 1):
         patch = labels == k
-        centre = tuple(float(c) for c in ndimage.center_of_mass(patch))
+        centre = _torus_centre(patch) if periodic else tuple(
+            float(c) for c in ndimage.center_of_mass(patch))
         kind = "in" if change[patch].mean() < 0.0 else "out"
         force_change = float(landed.traction[patch].sum()
-                             - scaled_traction(predicted_gap[patch]).sum())
+                             - scaled_traction(stayed_gap[patch]).sum())
         jumps.append(Jump(kind, float(d_before), float(d_after), centre, int(patch.sum()),
                           force_change))
     return jumps
 
+
+def _joined_across_edges(labels):
+    """(labels, count) with the patches that touch across the map's edges (as neighbours on
+    the torus, four-connected as `ndimage.label`) given one label, numbered 1…count."""
+    parent = np.arange(labels.max() + 1)
+
+    def root(k):
+        while parent[k] != k:
+            k = parent[k]
+        return k
+
+    for a, b in ((labels[0, :], labels[-1, :]), (labels[:, 0], labels[:, -1])):
+        for i, j in zip(a, b):
+            if i and j:
+                parent[max(root(i), root(j))] = min(root(i), root(j))
+    roots = np.array([root(k) for k in range(parent.size)])
+    _, renumbered = np.unique(roots, return_inverse=True)  # 0 stays 0: roots[0] = 0
+    return renumbered[labels], int(renumbered.max())
+
+
+def _torus_centre(patch):
+    """The centroid (row, column, pixels) of a patch on a periodic map: the mean angle of
+    its pixels around each axis, so a patch across an edge is centred on it."""
+    centre = []
+    for axis, n in enumerate(patch.shape):
+        angle = 2.0 * np.pi * np.nonzero(patch)[axis] / n
+        mean = np.arctan2(np.sin(angle).mean(), np.cos(angle).mean())
+        centre.append(round(float(mean * n / (2.0 * np.pi)), 9) % n)  # −0 → 0, not n
+    return tuple(centre)
