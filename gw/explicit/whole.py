@@ -23,6 +23,7 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
 from fem_asperity.path.curve import parabola_vertex
 from fem_asperity.plumbing.checks import in_range, positive
@@ -30,7 +31,7 @@ from fem_asperity.plumbing.errors import InputError
 
 from .halfspace import PixelHalfSpace
 from .path import follow
-from .relax import LJMap
+from .relax import BLAS_THREADS, LJMap
 
 #: Largest compliance number c = Δγ a/(π E* ε²) without a warning: the pixel a against the
 #: cohesive zone's elastic length E*ε²/Δγ (for caps c = μ^1.5 a/π, a in √(Rε)). One cap against
@@ -272,12 +273,14 @@ def _solve(heights, pixel, periodic, adhesion, top, step, lowest, resolution_eps
     def approach_progress(fraction):
         progress(0.5 * min(fraction * separations.size / expected, 0.99))
 
-    approach, y = follow(ljmap, separations, ljmap.rest(),
-                         jump_resolution=resolution_eps, until=until,
-                         progress=approach_progress if progress else None)
-    planned = separations[separations >= approach.d.min() - 1e-9 * step]
-    retraction, _ = follow(ljmap, planned[::-1], y, jump_resolution=resolution_eps,
-                           progress=(lambda f: progress(0.5 + 0.5 * f)) if progress else None)
+    with threadpool_limits(BLAS_THREADS, user_api="blas"):
+        approach, y = follow(ljmap, separations, ljmap.rest(),
+                             jump_resolution=resolution_eps, until=until,
+                             progress=approach_progress if progress else None)
+        planned = separations[separations >= approach.d.min() - 1e-9 * step]
+        retraction, _ = follow(ljmap, planned[::-1], y, jump_resolution=resolution_eps,
+                               progress=(lambda f: progress(0.5 + 0.5 * f)) if progress
+                               else None)
     return {"approach": approach, "retraction": retraction, "separations": planned,
             "seconds": time.perf_counter() - started, "pixel": pixel,
             "incomplete": until is not None and not until(list(approach.force))}
