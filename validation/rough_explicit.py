@@ -27,8 +27,17 @@ QUICK = ({"mu": 1.0, "zeta": 2.0, "sigma_r_eta": 0.05, "summits": 6},)
 #: to crowded summits (0.15: caps about 2.4 √(Rε) apart at ζ = 0.5). μ = 2 or 3 would need a
 #: pixel of 0.09 or 0.05 (4-16 times the pixels): left out of the map.
 MAP_MU, MAP_ZETA, MAP_SRE = (0.3, 1.0), (0.5, 2.0, 6.0), (0.02, 0.05, 0.15)
-MAP_SUMMITS = 16
+#: Summits per surface, and two draws of each surface: the spread between them is the
+#: sample's share of each model's error.
+MAP_SUMMITS, MAP_SEEDS = 16, (0, 1)
 ACCURACY = "draft"
+#: Self-affine surfaces, answered as a user's map is (`gw.explicit.answer`, from the summits it
+#: measures): Hurst 0.8, wavelengths from 12 to 64 pixels on a periodic 128² map (about 36
+#: summits, σRη ≈ 0.05; 0.2-0.3 √(Rε) per pixel at an rms height ζ ≤ 2 ε, so μ = 1 keeps a
+#: compliance number ≤ 0.1; at ζ = 6 the height step between pixels, 0.68 ε, would be coarse),
+#: E* set from the summits' mean radius for μ.
+AFFINE = {"n": 128, "hurst": 0.8, "short": 12, "long": 64}
+AFFINE_MU, AFFINE_ZETA, AFFINE_SEEDS = (0.3, 1.0), (1.0, 2.0), (1, 2)
 
 
 def scenes(full):
@@ -37,12 +46,21 @@ def scenes(full):
 
     if not full:
         return [Scene(**s) for s in QUICK]
-    return [Scene(mu=mu, zeta=zeta, sigma_r_eta=sre, summits=MAP_SUMMITS)
-            for mu in MAP_MU for zeta in MAP_ZETA for sre in MAP_SRE]
+    return [Scene(mu=mu, zeta=zeta, sigma_r_eta=sre, summits=MAP_SUMMITS, seed=seed)
+            for mu in MAP_MU for zeta in MAP_ZETA for sre in MAP_SRE for seed in MAP_SEEDS]
+
+
+def affine_specs(full):
+    """The self-affine surfaces of the map (none in the quick tier), as dicts."""
+    if not full:
+        return []
+    return [{"mu": mu, "zeta": zeta, "seed": seed}
+            for mu in AFFINE_MU for zeta in AFFINE_ZETA for seed in AFFINE_SEEDS]
 
 
 def _folder():
-    revision = f"{code_revision('gw.explicit.compare')}-{solver_revision()}"
+    revision = (f"{code_revision('gw.explicit.compare', 'gw.explicit.answer')}-"
+                f"{solver_revision()}")
     return cache_dir() / "rough_explicit" / revision
 
 
@@ -73,33 +91,75 @@ def solve_scene(scene, accuracy=ACCURACY):
     return record
 
 
+def _affine_key(spec):
+    return "self_affine_" + "_".join(f"{k}={v:g}" for k, v in spec.items())
+
+
+def solve_affine(spec, accuracy=ACCURACY):
+    """One self-affine surface answered by GW, interacting asperities and whole, as a
+    JSON-ready dict (F̄max in 2πRΔγ per summit counted), kept in the store."""
+    from gw.explicit import Adhesion, self_affine, summit_statistics
+    from gw.explicit.answer import answer
+    from gw.explicit.compare import DGAMMA, EPS
+    from gw.explicit.interacting import AsperityLaw
+
+    path = _folder() / f"{_affine_key(spec)}.json"
+    if path.exists():
+        return json.loads(path.read_text())
+    pixel = 1e-9  # m; F̄, d̃ and the verdicts depend on the map's shape and ζ, μ only
+    surface = self_affine(n=AFFINE["n"], pixel=pixel, rms_height=spec["zeta"] * EPS,
+                          hurst=AFFINE["hurst"], short_cutoff=AFFINE["short"] * pixel,
+                          long_cutoff=AFFINE["long"] * pixel, seed=spec["seed"])
+    counted = summit_statistics(surface)
+    e_star = np.sqrt(counted.radius * DGAMMA**2 / (EPS**3 * spec["mu"] ** 3))
+    found = answer(surface, Adhesion(e_star, DGAMMA, EPS), accuracy=accuracy,
+                   law=AsperityLaw.solved(spec["mu"]))
+    unit = 2 * np.pi * counted.radius * DGAMMA * counted.count
+    whole = found.whole
+    record = {"spec": spec, "accuracy": accuracy, "source": surface.source,
+              "summits": counted.count, "sigma_r_eta": counted.sigma_s * counted.radius
+              * counted.density, "zeta_s": counted.sigma_s / EPS,
+              "pixel_sqrt_r_eps": pixel / np.sqrt(counted.radius * EPS),
+              "estimate": whole.error_estimate["force_max"] / unit,
+              "jumps_in": sum(j.kind == "in" for j in whole.jumps), "needs": found.needs,
+              "models": {name: {"f_max": m.force_max / unit, "seconds": m.seconds,
+                                "error": found.relative_to_whole[name]}
+                         for name, m in found.models.items()},
+              "notes": list(found.notes)}
+    write_atomic(path, json.dumps(record, allow_nan=False))
+    return record
+
+
 def run_scenes(full, *, jobs=None, scheduler=None, step=print):
-    """Every scene's record, solved where not stored: the laws first (one per μ, stored), then
-    the surfaces on `jobs` processes or the Dask scheduler at `scheduler`."""
-    todo = scenes(full)
-    for mu in sorted({s.mu for s in todo}):
+    """(caps, self-affine): every surface's record, solved where not stored: the laws first
+    (one per μ, stored), then the surfaces on `jobs` processes or the Dask scheduler at
+    `scheduler`."""
+    tasks = ([(_key(s), solve_scene, s) for s in scenes(full)]
+             + [(_affine_key(a), solve_affine, a) for a in affine_specs(full)])
+    for mu in sorted({s.mu for s in scenes(full)} | {a["mu"] for a in affine_specs(full)}):
         stored_curve(mu, method="bem", accuracy="default")
-    step(f"rough surfaces made explicit: {len(todo)} surface(s), GW, interacting asperities "
-         "and the whole surface")
+    step(f"rough surfaces: {len(tasks)} surface(s), GW, interacting asperities and the whole "
+         "surface")
     records = {}
     if scheduler is not None:
         from dask.distributed import Client
 
         with Client(scheduler) as client:
-            futures = {client.submit(solve_scene, s, pure=False): s for s in todo}
-            for future in futures:
-                records[_key(futures[future])] = future.result()
-    elif (jobs or os.cpu_count() or 1) > 1 and len(todo) > 1:
+            futures = {key: client.submit(solve, task, pure=False)
+                       for key, solve, task in tasks}
+            records = {key: future.result() for key, future in futures.items()}
+    elif (jobs or os.cpu_count() or 1) > 1 and len(tasks) > 1:
         with ProcessPoolExecutor(jobs, initializer=_one_fft_thread) as pool:
-            futures = {pool.submit(solve_scene, s): s for s in todo}
+            futures = {pool.submit(solve, task): key for key, solve, task in tasks}
             for k, future in enumerate(as_completed(futures), start=1):
-                records[_key(futures[future])] = future.result()
-                step(f"  {k}/{len(todo)} surfaces")
+                records[futures[future]] = future.result()
+                step(f"  {k}/{len(tasks)} surfaces")
     else:
-        for k, s in enumerate(todo, start=1):
-            records[_key(s)] = solve_scene(s)
-            step(f"  {k}/{len(todo)} surfaces")
-    return [records[_key(s)] for s in todo]
+        for k, (key, solve, task) in enumerate(tasks, start=1):
+            records[key] = solve(task)
+            step(f"  {k}/{len(tasks)} surfaces")
+    caps = [records[_key(s)] for s in scenes(full)]
+    return caps, [records[_affine_key(a)] for a in affine_specs(full)]
 
 
 def _one_fft_thread():
@@ -113,8 +173,8 @@ def run(out, *, full=False, jobs=None, scheduler=None, step=print, header=""):
     return the summary."""
     folder = out / "rough_explicit"
     start = time.perf_counter()
-    records = run_scenes(full, jobs=jobs, scheduler=scheduler, step=step)
-    summary = {"full": full, "accuracy": ACCURACY, "scenes": records,
+    records, affine = run_scenes(full, jobs=jobs, scheduler=scheduler, step=step)
+    summary = {"full": full, "accuracy": ACCURACY, "scenes": records, "self_affine": affine,
                "wall_s": time.perf_counter() - start}
     save_figure(curves_figure(records[0]), folder / "curves.png")
     if full:
@@ -143,13 +203,14 @@ def section(summary):
              "− 1; ± is the whole surface's estimate (twice the pixel). A model holds where it "
              "is within 10 % (plus the estimate). Figures: `rough_explicit/curves.png`"
              + (", `rough_explicit/map.png`." if summary["full"] else "."), "",
-             "| μ | ζ | σRη | summits | F̄max whole | ± | GW paper | GW solved | sum | "
+             "| μ | ζ | σRη | seed | summits | F̄max whole | ± | GW paper | GW solved | sum | "
              "interacting | jumps in (whole) | whole s | interacting s |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in summary["scenes"]:
         s, e, m = r["scene"], r["errors"], r["models"]
         lines.append(
-            f"| {s['mu']:g} | {s['zeta']:g} | {s['sigma_r_eta']:g} | {s['summits']} | "
+            f"| {s['mu']:g} | {s['zeta']:g} | {s['sigma_r_eta']:g} | {s['seed']} | "
+            f"{s['summits']} | "
             f"{m['whole']['f_max']:.4f} | {r['estimate']:.1e} | "
             + " | ".join(f"{e[k]:+.1%}{'' if r['holds'][k] else ' ✗'}"
                          for k in ("gw_paper", "gw_solved", "gw_sum", "interacting"))
@@ -178,6 +239,53 @@ def section(summary):
               f"{sum(r['models']['whole']['seconds'] for r in rows):.0f} s in all (the column "
               f"'whole s'); this run took {summary['wall_s']:.0f} s (surfaces in the store are "
               "read, not solved)."]
+    spread = _draw_spread(rows)
+    if spread:
+        lines += ["", "Two draws of each surface (seeds): their errors differ by "
+                  + "; ".join(f"{NAMES[k]} {min(v):.0%} to {max(v):.0%} "
+                              f"(median {np.median(v):.0%})" for k, v in spread.items())
+                  + " of the whole surface's F̄max: the share of the sample in each verdict."]
+    if summary.get("self_affine"):
+        lines += ["", affine_section(summary["self_affine"])]
+    return "\n".join(lines)
+
+
+def _draw_spread(rows):
+    """name → |error(draw a) − error(draw b)| over the surfaces drawn more than once (the
+    largest difference between draws of one surface)."""
+    groups = {}
+    for r in rows:
+        s = r["scene"]
+        groups.setdefault((s["mu"], s["zeta"], s["sigma_r_eta"], s["summits"]), []).append(r)
+    drawn = [g for g in groups.values() if len(g) > 1]
+    return {k: [max(r["errors"][k] for r in g) - min(r["errors"][k] for r in g) for g in drawn]
+            for k in ("gw_sum", "interacting")} if drawn else {}
+
+
+def affine_section(records):
+    """Markdown of the self-affine surfaces: each model's F̄max against the whole surface's."""
+    a = AFFINE
+    lines = ["### Self-affine surfaces, answered from their measured summits", "",
+             f"Periodic {a['n']}² maps, Hurst {a['hurst']}, wavelengths {a['short']} to "
+             f"{a['long']} pixels (`gw.explicit.self_affine`), answered as a user's map is "
+             "(`gw.explicit.answer`): GW's integral over the summits' own Gaussian (ζ_s = "
+             "σ_s/ε, ω = 1) and the interacting asperities on the summits counted on the map "
+             "(8-neighbour maxima, their mean radius R, μ at R), against the map solved whole. "
+             "F̄max in 2πRΔγ per counted summit; error: F̄max/F̄max(whole) − 1; ✗: outside 10 % "
+             "(plus the estimate). 'needs': the cheapest model within that.", "",
+             "| μ | ζ (rms/ε) | seed | summits | ζ_s | σRη | pixel/√(Rε) | F̄max whole | ± | "
+             "GW | interacting | needs | jumps in | whole s |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in records:
+        s, m = r["spec"], r["models"]
+        margin = 0.10 + r["estimate"] / m["whole"]["f_max"]
+        lines.append(
+            f"| {s['mu']:g} | {s['zeta']:g} | {s['seed']} | {r['summits']} | "
+            f"{r['zeta_s']:.2f} | {r['sigma_r_eta']:.3f} | {r['pixel_sqrt_r_eps']:.2f} | "
+            f"{m['whole']['f_max']:.4f} | {r['estimate']:.1e} | "
+            + " | ".join(f"{m[k]['error']:+.1%}{'' if abs(m[k]['error']) <= margin else ' ✗'}"
+                         for k in ("gw", "interacting"))
+            + f" | {r['needs']} | {r['jumps_in']} | {m['whole']['seconds']:.1f} |")
     return "\n".join(lines)
 
 
@@ -215,20 +323,24 @@ def map_figure(records):
     for ax, mu in zip(axes, mus):
         for zeta, color in zip(sorted({r["scene"]["zeta"] for r in records}),
                                ("C0", "C1", "C2", "C3")):
-            rows = sorted((r for r in records
-                           if r["scene"]["mu"] == mu and r["scene"]["zeta"] == zeta),
-                          key=lambda r: r["scene"]["sigma_r_eta"])
-            x = [r["scene"]["sigma_r_eta"] for r in rows]
-            ax.plot(x, [100 * r["errors"]["gw_sum"] for r in rows], "o-", color=color,
-                    label=f"GW (sum), ζ = {zeta:g}")
-            ax.plot(x, [100 * r["errors"]["interacting"] for r in rows], "s--", color=color,
-                    label=f"interacting, ζ = {zeta:g}")
+            for seed in sorted({r["scene"]["seed"] for r in records}):
+                rows = sorted((r for r in records if r["scene"]["mu"] == mu
+                               and r["scene"]["zeta"] == zeta and r["scene"]["seed"] == seed),
+                              key=lambda r: r["scene"]["sigma_r_eta"])
+                x = [r["scene"]["sigma_r_eta"] for r in rows]
+                first = seed == records[0]["scene"]["seed"]  # lines and labels; others: marks
+                ax.plot(x, [100 * r["errors"]["gw_sum"] for r in rows], "o-" if first else "o",
+                        color=color, mfc=None if first else "none",
+                        label=f"GW (sum), ζ = {zeta:g}" if first else None)
+                ax.plot(x, [100 * r["errors"]["interacting"] for r in rows],
+                        "s--" if first else "s", color=color, mfc=None if first else "none",
+                        label=f"interacting, ζ = {zeta:g}" if first else None)
         ax.axhspan(-10, 10, color="0.9")
         ax.set_xscale("log")
         ax.set_xticks(MAP_SRE, [f"{v:g}" for v in MAP_SRE])
         ax.minorticks_off()
         ax.set_xlabel("summit density σRη")
         ax.set_ylabel("F̄max error against the whole surface [%]")
-        ax.set_title(f"μ = {mu:g}")
+        ax.set_title(f"μ = {mu:g} (open marks: a second draw)")
     axes[0].legend(fontsize=6)
     return fig
