@@ -10,7 +10,7 @@ import pytest
 
 from gw.explicit import Adhesion, gaussian_caps
 from gw.explicit.answer import answer
-from gw.explicit.compare import visible
+from gw.explicit.compare import visible, within
 from gw.explicit.interacting import AsperityLaw
 
 EPS, RADIUS, DGAMMA = 0.3e-9, 300e-9, 0.05
@@ -125,3 +125,25 @@ def test_the_answer_is_the_same_in_python(caps_map):
     assert clear.sum() <= found.statistics["summits"]["count"]
     assert found.statistics["summits"]["count"] <= visible(caps, surface.size, True).sum()
     assert found.models["gw"].force_max > 0 and found.whole is None
+
+
+@pytest.mark.parametrize("strength", [2.0, 5.0])
+def test_a_path_with_no_equilibrium_is_said_and_never_holds(caps_map, monkeypatch, strength):
+    """Where the interacting model finds no equilibrium its curve ends there: the answer says
+    where (m) and the verdict never takes it, however near the whole surface its F_max is;
+    with none at the first separation the model is left out, and says so. The coupling is
+    forced to `strength` between every pair (2μ^1.5/r̄: caps 1 and 0.4 √(Rε) apart)."""
+    _, surface, _ = caps_map
+    monkeypatch.setattr("gw.explicit.answer.coupling",
+                        lambda rows, columns, **_: strength * (1.0 - np.eye(len(rows))))
+    found = answer(surface, Adhesion(E_STAR, DGAMMA, EPS), model="interacting",
+                   accuracy="draft", law=AsperityLaw.solved(1.0))
+    assert any("no equilibrium" in note for note in found.notes)
+    if strength > 2:
+        assert set(found.models) == {"gw"}
+        return
+    stopped = found.models["interacting"].stopped
+    assert stopped is not None and found.models["interacting"].d.min() > stopped
+    assert found.records()["models"]["interacting"]["stopped_at"] == stopped
+    assert within(1.05, 1.0, 0.0) and not within(1.05, 1.0, 0.0, stopped)
+    assert within(1.14, 1.0, 0.05) and not within(1.16, 1.0, 0.05)

@@ -165,6 +165,17 @@ def test_interacting_summits_tend_to_the_gw_sum_as_they_spread():
     assert departures[2] < 0.01 * abs(alone.force.min())
 
 
+def test_summits_closer_than_their_contacts_have_no_far_field_equilibrium():
+    """Two summits at μ = 1 coupled by K = 5 (2μ^1.5/r̄: r̄ = 0.4 √(Rε), closer than their
+    contacts): the coupled branch ends where neither summit is near its own jump-in, and the
+    path stops there and says where, rather than jump one at a guess."""
+    law = AsperityLaw.solved(1.0)
+    path = Interacting([0.0, 0.3], 5.0 * (1.0 - np.eye(2)), law).follow(
+        np.arange(5.0, -3.0, -0.1))[0]
+    assert path.stopped is not None and path.stopped - 0.3 > law.jump_in + 0.5
+    assert path.d.min() > path.stopped and not path.jumps
+
+
 def test_a_soft_solid_starts_far_enough_to_see_its_jump_in():
     """At μ = 3 a cap jumps in from δ̄o = 4.23 (the BEM), beyond the first start (4 ε): the
     start moves out until the relaxed map keeps its distance, so the jump-in is on the path."""

@@ -123,7 +123,8 @@ def solve_affine(spec, accuracy=ACCURACY):
               "estimate": whole.error_estimate["force_max"] / unit,
               "jumps_in": sum(j.kind == "in" for j in whole.jumps), "needs": found.needs,
               "models": {name: {"f_max": m.force_max / unit, "seconds": m.seconds,
-                                "error": found.relative_to_whole[name]}
+                                "error": found.relative_to_whole[name],
+                                "stopped": m.stopped is not None}
                          for name, m in found.models.items()},
               "notes": list(found.notes)}
     write_atomic(path, json.dumps(record, allow_nan=False))
@@ -212,13 +213,14 @@ def section(summary):
             f"| {s['mu']:g} | {s['zeta']:g} | {s['sigma_r_eta']:g} | {s['seed']} | "
             f"{s['summits']} | "
             f"{m['whole']['f_max']:.4f} | {r['estimate']:.1e} | "
-            + " | ".join(f"{e[k]:+.1%}{'' if r['holds'][k] else ' ✗'}"
+            + " | ".join(_cell(e[k], r["holds"][k], m[k].get("stopped") is not None)
                          for k in ("gw_paper", "gw_solved", "gw_sum", "interacting"))
             + f" | {m['whole']['jumps'][0]} | {m['whole']['seconds']:.1f} | "
               f"{m['interacting']['seconds']:.2f} |")
     rows = summary["scenes"]
     counts = {k: sum(r["holds"][k] for r in rows) for k in NAMES if k != "whole"}
     neither = sum(not (r["holds"]["gw_sum"] or r["holds"]["interacting"]) for r in rows)
+    stopped = [r for r in rows if r["models"]["interacting"].get("stopped") is not None]
     summits = MAP_SUMMITS if summary["full"] else QUICK[0]["summits"]
     sampling = [r["models"]["gw_solved"]["f_max"] / r["models"]["gw_sum"]["f_max"] - 1.0
                 for r in rows]
@@ -227,7 +229,14 @@ def section(summary):
               "",
               "The sum over these summits is GW's physics on this very surface (each summit on "
               "the solved law, nothing felt from the others); the interacting model adds the "
-              f"elastic far field. Neither holds on {neither}/{len(rows)} surfaces. GW's "
+              f"elastic far field. Neither holds on {neither}/{len(rows)} surfaces. "
+              + (f"On {len(stopped)}/{len(rows)} surfaces (μ = "
+                 + ", ".join(f"{mu:g}" for mu in sorted({r["scene"]["mu"] for r in stopped}))
+                 + ") the "
+                 "interacting model found no equilibrium part-way down (contacts too large "
+                 "or too close for a point load's far field; 'stopped' in the table, its "
+                 "F̄max that of the path above). " if stopped else "")
+              + "GW's "
               "integral differs from the sum over the same summits by the sample alone: "
               f"with {summits} summits per surface (fewer where a cap covers another) the "
               f"integral over their Gaussian lies {min(sampling):+.0%} to {max(sampling):+.0%} "
@@ -250,16 +259,26 @@ def section(summary):
     return "\n".join(lines)
 
 
+def _cell(error, holds, stopped):
+    """A model's error in the report: ✗ where it does not hold, 'stopped' where its path
+    ended without an equilibrium."""
+    return f"{error:+.1%}{' stopped' if stopped else ''}{'' if holds else ' ✗'}"
+
+
 def _draw_spread(rows):
     """name → |error(draw a) − error(draw b)| over the surfaces drawn more than once (the
-    largest difference between draws of one surface)."""
+    largest difference between draws of one surface whose paths did not stop)."""
     groups = {}
     for r in rows:
         s = r["scene"]
         groups.setdefault((s["mu"], s["zeta"], s["sigma_r_eta"], s["summits"]), []).append(r)
-    drawn = [g for g in groups.values() if len(g) > 1]
-    return {k: [max(r["errors"][k] for r in g) - min(r["errors"][k] for r in g) for g in drawn]
-            for k in ("gw_sum", "interacting")} if drawn else {}
+    spread = {}
+    for k in ("gw_sum", "interacting"):
+        for group in groups.values():
+            errors = [r["errors"][k] for r in group if r["models"][k].get("stopped") is None]
+            if len(errors) > 1:
+                spread.setdefault(k, []).append(max(errors) - min(errors))
+    return spread
 
 
 def affine_section(records):
@@ -283,7 +302,8 @@ def affine_section(records):
             f"| {s['mu']:g} | {s['zeta']:g} | {s['seed']} | {r['summits']} | "
             f"{r['zeta_s']:.2f} | {r['sigma_r_eta']:.3f} | {r['pixel_sqrt_r_eps']:.2f} | "
             f"{m['whole']['f_max']:.4f} | {r['estimate']:.1e} | "
-            + " | ".join(f"{m[k]['error']:+.1%}{'' if abs(m[k]['error']) <= margin else ' ✗'}"
+            + " | ".join(_cell(m[k]["error"], abs(m[k]["error"]) <= margin
+                               and not m[k]["stopped"], m[k]["stopped"])
                          for k in ("gw", "interacting"))
             + f" | {r['needs']} | {r['jumps_in']} | {m['whole']['seconds']:.1f} |")
     return "\n".join(lines)

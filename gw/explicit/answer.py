@@ -18,7 +18,7 @@ from fem_asperity.plumbing.errors import InputError
 
 from ..integrate import strength, totals
 from ..surface import RoughSurface
-from .compare import HOLDS
+from .compare import within
 from .interacting import AsperityLaw, Interacting, coupling
 from .topography import spectral_summit_statistics, summit_statistics, summits
 from .whole import check_map, most_tensile, solve_whole
@@ -33,8 +33,9 @@ MAX_SUMMITS = 4000
 @dataclass(frozen=True)
 class ModelAnswer:
     """One model's answer: `force_max` (N, the largest tensile total force on approach,
-    positive), `d_at_max` (m), `pressure_max` (Pa, over the map's area), `seconds`, and the
-    curve it came from (`d`, m; `force`, N, < 0 tensile)."""
+    positive), `d_at_max` (m), `pressure_max` (Pa, over the map's area), `seconds`, the
+    curve it came from (`d`, m; `force`, N, < 0 tensile), and `stopped` (m: where the
+    interacting model found no equilibrium and its curve ends; None where it did not)."""
 
     force_max: float
     d_at_max: float
@@ -42,15 +43,16 @@ class ModelAnswer:
     seconds: float
     d: np.ndarray = field(repr=False)
     force: np.ndarray = field(repr=False)
+    stopped: float | None = None
 
 
 @dataclass(frozen=True)
 class Answer:
     """The answer for one map: `models` (name → ModelAnswer), `whole` (the `WholeSurface`, or
     None), `relative_to_whole` (name → F_max/F_max(whole) − 1), `needs` (the cheapest model
-    within HOLDS of the whole surface, counting its error estimate; None without the whole
-    surface), `statistics` (the summits counted and the spectral estimate), `mu` (at the
-    summit radius), `notes` (what was left out and why)."""
+    `compare.within` the whole surface (its estimate counted; a curve that stopped never is);
+    None without the whole surface), `statistics` (the summits counted and the spectral
+    estimate), `mu` (at the summit radius), `notes` (what was left out and why)."""
 
     models: dict
     whole: object
@@ -71,7 +73,8 @@ class Answer:
                          "d_at_max": best.d_at_max}
         out["models"] = {name: {"force_max": m.force_max, "pressure_max": m.pressure_max,
                                 "d_at_max": m.d_at_max, "seconds": m.seconds,
-                                "relative_to_whole": self.relative_to_whole.get(name)}
+                                "relative_to_whole": self.relative_to_whole.get(name),
+                                "stopped_at": m.stopped}
                          for name, m in self.models.items()}
         out["needs"] = self.needs
         out["statistics"] = self.statistics
@@ -122,8 +125,10 @@ def answer(topography, adhesion, *, model="whole", accuracy="default", radius=No
             notes.append(f"interacting: {found.heights.size} summits, more than {MAX_SUMMITS}: "
                          "left out")
         else:
-            models["interacting"] = _interacting(topography, found, law, scales, d_grid,
-                                                 unit_force, area, notes)
+            interacting = _interacting(topography, found, law, scales, d_grid, unit_force,
+                                       area, notes)
+            if interacting is not None:
+                models["interacting"] = interacting
     whole = None
     if model == "whole":
         whole = solve_whole(topography, adhesion, accuracy=accuracy, progress=progress)
@@ -133,10 +138,10 @@ def answer(topography, adhesion, *, model="whole", accuracy="default", radius=No
     relative, needs = {}, None
     if whole is not None:
         reference = whole.force_max
-        margin = HOLDS * reference + whole.error_estimate["force_max"]
         relative = {name: m.force_max / reference - 1.0 for name, m in models.items()}
         needs = next(name for name in MODELS if name in models
-                     and abs(models[name].force_max - reference) <= margin)
+                     and within(models[name].force_max, reference,
+                                whole.error_estimate["force_max"], models[name].stopped))
     statistics = {"summits": vars(counted), "spectral": vars(spectral) if spectral else None}
     return Answer(models, whole, relative, needs, statistics, scales.mu, radius, tuple(notes))
 
@@ -160,12 +165,18 @@ def _separations(topography, adhesion, accuracy):
 
 
 def _interacting(topography, found, law, scales, d_grid, unit_force, area, notes):
+    """The interacting model's `ModelAnswer`; None (and a note) where it has no equilibrium at
+    the first separation."""
     started = time.perf_counter()
     pixel = topography.pixel / scales.length_r
     k = coupling(found.rows, found.columns, shape=topography.shape, pixel=pixel, mu=scales.mu,
                  periodic=topography.periodic)
     model = Interacting(found.heights / scales.eps, k, law)
     path, _, _ = model.follow(d_grid / scales.eps)
+    if path.d.size == 0:
+        notes.append("interacting: no equilibrium of the far-field model at the first "
+                     "separation (contacts too large or too close for it): left out")
+        return None
     if path.stopped is not None:
         notes.append(f"interacting: no equilibrium of the far-field model below d = "
                      f"{path.stopped * scales.eps:.4g} m (contacts too large or too close "
@@ -173,4 +184,5 @@ def _interacting(topography, found, law, scales, d_grid, unit_force, area, notes
     f_max, d_max, _ = most_tensile(path.d, path.force)
     return ModelAnswer(f_max * unit_force, d_max * scales.eps, f_max * unit_force / area,
                        time.perf_counter() - started, path.d * scales.eps,
-                       path.force * unit_force)
+                       path.force * unit_force,
+                       None if path.stopped is None else path.stopped * scales.eps)

@@ -113,7 +113,7 @@ class ModelCurve:
 class Comparison:
     """Every model on one `scene`: `models` (name → ModelCurve), the whole surface's
     `estimate` of F̄max, `errors` (name → F̄max/F̄max(whole) − 1) and `holds` (name → within
-    HOLDS, counting the estimate)."""
+    HOLDS, counting the estimate, and not stopped)."""
 
     scene: Scene
     models: dict
@@ -164,9 +164,16 @@ def compare(scene, *, accuracy="default", law=None, progress=None):
     reference = models["whole"].f_max
     estimate = whole.error_estimate["force_max"] / per_summit
     errors = {name: models[name].f_max / reference - 1.0 for name in MODELS}
-    holds = {name: abs(models[name].f_max - reference) <= HOLDS * reference + estimate
+    holds = {name: within(models[name].f_max, reference, estimate, models[name].stopped)
              for name in MODELS}
     return Comparison(scene, {name: models[name] for name in MODELS}, estimate, errors, holds)
+
+
+def within(f_max, reference, estimate, stopped=None):
+    """Whether a model's `f_max` holds: within HOLDS of the whole surface's `reference`,
+    counting its `estimate` (both in f_max's unit), and on a path that did not `stop` (where
+    the far-field model found no equilibrium, its F_max is only that of the path above)."""
+    return stopped is None and abs(f_max - reference) <= HOLDS * reference + estimate
 
 
 def visible(caps, size, periodic):
