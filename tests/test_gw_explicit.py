@@ -10,7 +10,7 @@ import pytest
 
 from gw.explicit import Adhesion, gaussian_caps
 from gw.explicit.answer import answer
-from gw.explicit.compare import visible, within
+from gw.explicit.compare import settled, visible, within
 from gw.explicit.interacting import AsperityLaw
 
 EPS, RADIUS, DGAMMA = 0.3e-9, 300e-9, 0.05
@@ -129,8 +129,8 @@ def test_the_answer_is_the_same_in_python(caps_map):
 
 @pytest.mark.parametrize("strength", [2.0, 5.0])
 def test_a_path_with_no_equilibrium_is_said_and_never_holds(caps_map, monkeypatch, strength):
-    """Where the interacting model finds no equilibrium its curve ends there: the answer says
-    where (m) and the verdict never takes it, however near the whole surface its F_max is;
+    """Where the interacting model finds no equilibrium still in tension its curve ends there:
+    the answer says where (m) and the verdict never takes it, however near the whole surface;
     with none at the first separation the model is left out, and says so. The coupling is
     forced to `strength` between every pair (2μ^1.5/r̄: caps 1 and 0.4 √(Rε) apart)."""
     _, surface, _ = caps_map
@@ -145,5 +145,8 @@ def test_a_path_with_no_equilibrium_is_said_and_never_holds(caps_map, monkeypatc
     stopped = found.models["interacting"].stopped
     assert stopped is not None and found.models["interacting"].d.min() > stopped
     assert found.records()["models"]["interacting"]["stopped_at"] == stopped
-    assert within(1.05, 1.0, 0.0) and not within(1.05, 1.0, 0.0, stopped)
+    force = found.models["interacting"].force
+    assert force[-1] < 0 and not settled(stopped, force)  # it stopped in tension
+    assert settled(None, force) and settled(stopped, np.append(force, 0.0))
+    assert within(1.05, 1.0, 0.0) and not within(1.05, 1.0, 0.0, settled=False)
     assert within(1.14, 1.0, 0.05) and not within(1.16, 1.0, 0.05)

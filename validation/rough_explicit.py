@@ -19,6 +19,7 @@ import numpy as np
 from fem_asperity.plumbing.files import save_figure, write_atomic
 from fem_asperity.plumbing.revision import code_revision, solver_revision
 from fem_asperity.studies.store import cache_dir, stored_curve
+from gw.explicit.compare import settled
 
 #: The quick tier: six caps at μ = 1, ζ = 2, σRη = 0.05 (a 58² map; seconds).
 QUICK = ({"mu": 1.0, "zeta": 2.0, "sigma_r_eta": 0.05, "summits": 6},)
@@ -124,7 +125,8 @@ def solve_affine(spec, accuracy=ACCURACY):
               "jumps_in": sum(j.kind == "in" for j in whole.jumps), "needs": found.needs,
               "models": {name: {"f_max": m.force_max / unit, "seconds": m.seconds,
                                 "error": found.relative_to_whole[name],
-                                "stopped": m.stopped is not None}
+                                "stopped": m.stopped is not None,
+                                "settled": settled(m.stopped, m.force)}
                          for name, m in found.models.items()},
               "notes": list(found.notes)}
     write_atomic(path, json.dumps(record, allow_nan=False))
@@ -213,14 +215,17 @@ def section(summary):
             f"| {s['mu']:g} | {s['zeta']:g} | {s['sigma_r_eta']:g} | {s['seed']} | "
             f"{s['summits']} | "
             f"{m['whole']['f_max']:.4f} | {r['estimate']:.1e} | "
-            + " | ".join(_cell(e[k], r["holds"][k], m[k].get("stopped") is not None)
+            + " | ".join(_cell(e[k], r["holds"][k], not settled(m[k]["stopped"],
+                                                                   m[k]["approach"]))
                          for k in ("gw_paper", "gw_solved", "gw_sum", "interacting"))
             + f" | {m['whole']['jumps'][0]} | {m['whole']['seconds']:.1f} | "
               f"{m['interacting']['seconds']:.2f} |")
     rows = summary["scenes"]
     counts = {k: sum(r["holds"][k] for r in rows) for k in NAMES if k != "whole"}
     neither = sum(not (r["holds"]["gw_sum"] or r["holds"]["interacting"]) for r in rows)
-    stopped = [r for r in rows if r["models"]["interacting"].get("stopped") is not None]
+    stopped = [r for r in rows if r["models"]["interacting"]["stopped"] is not None]
+    short = [r for r in stopped if not settled(r["models"]["interacting"]["stopped"],
+                                               r["models"]["interacting"]["approach"])]
     summits = MAP_SUMMITS if summary["full"] else QUICK[0]["summits"]
     sampling = [r["models"]["gw_solved"]["f_max"] / r["models"]["gw_sum"]["f_max"] - 1.0
                 for r in rows]
@@ -230,12 +235,13 @@ def section(summary):
               "The sum over these summits is GW's physics on this very surface (each summit on "
               "the solved law, nothing felt from the others); the interacting model adds the "
               f"elastic far field. Neither holds on {neither}/{len(rows)} surfaces. "
-              + (f"On {len(stopped)}/{len(rows)} surfaces (μ = "
-                 + ", ".join(f"{mu:g}" for mu in sorted({r["scene"]["mu"] for r in stopped}))
-                 + ") the "
-                 "interacting model found no equilibrium part-way down (contacts too large "
-                 "or too close for a point load's far field; 'stopped' in the table, its "
-                 "F̄max that of the path above). " if stopped else "")
+              + (f"On {len(stopped)}/{len(rows)} surfaces the interacting model found no "
+                 "equilibrium part-way down (contacts too large or too close for a point "
+                 f"load's far field); on {len(short)} of them (μ = "
+                 + ", ".join(f"{mu:g}" for mu in sorted({r["scene"]["mu"] for r in short}))
+                 + ") still in tension ('stopped' in the table: its F̄max is that of the path "
+                 "above, no answer), on the others once the total force had turned "
+                 "compressive, its F̄max behind it. " if stopped else "")
               + "GW's "
               "integral differs from the sum over the same summits by the sample alone: "
               f"with {summits} summits per surface (fewer where a cap covers another) the "
@@ -261,7 +267,7 @@ def section(summary):
 
 def _cell(error, holds, stopped):
     """A model's error in the report: ✗ where it does not hold, 'stopped' where its path
-    ended without an equilibrium."""
+    ended without an equilibrium still in tension (`gw.explicit.compare.settled`)."""
     return f"{error:+.1%}{' stopped' if stopped else ''}{'' if holds else ' ✗'}"
 
 
@@ -275,7 +281,8 @@ def _draw_spread(rows):
     spread = {}
     for k in ("gw_sum", "interacting"):
         for group in groups.values():
-            errors = [r["errors"][k] for r in group if r["models"][k].get("stopped") is None]
+            errors = [r["errors"][k] for r in group if r["holds"][k] or settled(
+                r["models"][k]["stopped"], r["models"][k]["approach"])]
             if len(errors) > 1:
                 spread.setdefault(k, []).append(max(errors) - min(errors))
     return spread
@@ -303,7 +310,7 @@ def affine_section(records):
             f"{r['zeta_s']:.2f} | {r['sigma_r_eta']:.3f} | {r['pixel_sqrt_r_eps']:.2f} | "
             f"{m['whole']['f_max']:.4f} | {r['estimate']:.1e} | "
             + " | ".join(_cell(m[k]["error"], abs(m[k]["error"]) <= margin
-                               and not m[k]["stopped"], m[k]["stopped"])
+                               and m[k]["settled"], not m[k]["settled"])
                          for k in ("gw", "interacting"))
             + f" | {r['needs']} | {r['jumps_in']} | {m['whole']['seconds']:.1f} |")
     return "\n".join(lines)

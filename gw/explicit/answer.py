@@ -18,7 +18,7 @@ from fem_asperity.plumbing.errors import InputError
 
 from ..integrate import strength, totals
 from ..surface import RoughSurface
-from .compare import within
+from .compare import settled, within
 from .interacting import AsperityLaw, Interacting, coupling
 from .topography import spectral_summit_statistics, summit_statistics, summits
 from .whole import check_map, most_tensile, solve_whole
@@ -50,7 +50,7 @@ class ModelAnswer:
 class Answer:
     """The answer for one map: `models` (name → ModelAnswer), `whole` (the `WholeSurface`, or
     None), `relative_to_whole` (name → F_max/F_max(whole) − 1), `needs` (the cheapest model
-    `compare.within` the whole surface (its estimate counted; a curve that stopped never is);
+    `compare.within` the whole surface, its estimate counted, on a `compare.settled` path;
     None without the whole surface), `statistics` (the summits counted and the spectral
     estimate), `mu` (at the summit radius), `notes` (what was left out and why)."""
 
@@ -141,7 +141,8 @@ def answer(topography, adhesion, *, model="whole", accuracy="default", radius=No
         relative = {name: m.force_max / reference - 1.0 for name, m in models.items()}
         needs = next(name for name in MODELS if name in models
                      and within(models[name].force_max, reference,
-                                whole.error_estimate["force_max"], models[name].stopped))
+                                whole.error_estimate["force_max"],
+                                settled(models[name].stopped, models[name].force)))
     statistics = {"summits": vars(counted), "spectral": vars(spectral) if spectral else None}
     return Answer(models, whole, relative, needs, statistics, scales.mu, radius, tuple(notes))
 
@@ -180,7 +181,10 @@ def _interacting(topography, found, law, scales, d_grid, unit_force, area, notes
     if path.stopped is not None:
         notes.append(f"interacting: no equilibrium of the far-field model below d = "
                      f"{path.stopped * scales.eps:.4g} m (contacts too large or too close "
-                     "for it); its F_max is that of the path above")
+                     "for it); " + ("the total force had turned compressive, its F_max "
+                                    "behind it" if settled(path.stopped, path.force) else
+                                    "still in tension: its F_max is only that of the path "
+                                    "above, no answer"))
     f_max, d_max, _ = most_tensile(path.d, path.force)
     return ModelAnswer(f_max * unit_force, d_max * scales.eps, f_max * unit_force / area,
                        time.perf_counter() - started, path.d * scales.eps,

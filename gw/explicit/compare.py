@@ -113,7 +113,7 @@ class ModelCurve:
 class Comparison:
     """Every model on one `scene`: `models` (name → ModelCurve), the whole surface's
     `estimate` of F̄max, `errors` (name → F̄max/F̄max(whole) − 1) and `holds` (name → within
-    HOLDS, counting the estimate, and not stopped)."""
+    HOLDS, counting the estimate, on a path that is `settled`)."""
 
     scene: Scene
     models: dict
@@ -164,16 +164,25 @@ def compare(scene, *, accuracy="default", law=None, progress=None):
     reference = models["whole"].f_max
     estimate = whole.error_estimate["force_max"] / per_summit
     errors = {name: models[name].f_max / reference - 1.0 for name in MODELS}
-    holds = {name: within(models[name].f_max, reference, estimate, models[name].stopped)
+    holds = {name: within(models[name].f_max, reference, estimate,
+                          settled(models[name].stopped, models[name].approach))
              for name in MODELS}
     return Comparison(scene, {name: models[name] for name in MODELS}, estimate, errors, holds)
 
 
-def within(f_max, reference, estimate, stopped=None):
+def within(f_max, reference, estimate, settled=True):
     """Whether a model's `f_max` holds: within HOLDS of the whole surface's `reference`,
-    counting its `estimate` (both in f_max's unit), and on a path that did not `stop` (where
-    the far-field model found no equilibrium, its F_max is only that of the path above)."""
-    return stopped is None and abs(f_max - reference) <= HOLDS * reference + estimate
+    counting its `estimate` (both in f_max's unit), and `settled` (its own; see `settled`)."""
+    return settled and abs(f_max - reference) <= HOLDS * reference + estimate
+
+
+def settled(stopped, force):
+    """Whether a path's F_max is its own: it did not stop (`stopped` None), or it stopped
+    where its total `force` (< 0 tensile) had turned compressive, its most tensile point
+    behind it (past there each contact's force only grows compressive; a summit still to touch
+    would have to out-pull them all). A path that stopped in tension has an F_max that is
+    only that of the path above."""
+    return stopped is None or bool(force[-1] >= 0.0)
 
 
 def visible(caps, size, periodic):
