@@ -240,8 +240,9 @@ def section(summary):
                  f"load's far field); on {len(short)} of them (μ = "
                  + ", ".join(f"{mu:g}" for mu in sorted({r["scene"]["mu"] for r in short}))
                  + ") still in tension ('stopped' in the table: its F̄max is that of the path "
-                 "above, no answer), on the others once the total force had turned "
-                 "compressive, its F̄max behind it. " if stopped else "")
+                 "above, no answer)"
+                 + ("" if len(short) == len(stopped) else ", on the others once the total force "
+                    "had turned compressive, its F̄max behind it") + ". " if stopped else "")
               + "GW's "
               "integral differs from the sum over the same summits by the sample alone: "
               f"with {summits} summits per surface (fewer where a cap covers another) the "
