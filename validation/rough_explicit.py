@@ -340,6 +340,12 @@ def curves_figure(record):
     return fig
 
 
+def _answered(record):
+    """Whether the interacting model's F̄max on a map surface is its own (`settled`)."""
+    m = record["models"]["interacting"]
+    return settled(m["stopped"], m["approach"])
+
+
 def map_figure(records):
     """The error of GW's sum over the summits and of the interacting model against σRη, per μ
     and ζ (GW's integral differs from the sum by the sample: see the report)."""
@@ -360,15 +366,21 @@ def map_figure(records):
                 ax.plot(x, [100 * r["errors"]["gw_sum"] for r in rows], "o-" if first else "o",
                         color=color, mfc=None if first else "none",
                         label=f"GW (sum), ζ = {zeta:g}" if first else None)
-                ax.plot(x, [100 * r["errors"]["interacting"] for r in rows],
-                        "s--" if first else "s", color=color, mfc=None if first else "none",
+                # a path that stopped in tension has no F̄max of its own: a cross, no line
+                answered = [100 * r["errors"]["interacting"] if _answered(r) else np.nan
+                            for r in rows]
+                ax.plot(x, answered, "s--" if first else "s", color=color,
+                        mfc=None if first else "none",
                         label=f"interacting, ζ = {zeta:g}" if first else None)
+                ax.plot(x, [np.nan if _answered(r) else 100 * r["errors"]["interacting"]
+                            for r in rows], "x", color=color)
         ax.axhspan(-10, 10, color="0.9")
         ax.set_xscale("log")
         ax.set_xticks(MAP_SRE, [f"{v:g}" for v in MAP_SRE])
         ax.minorticks_off()
         ax.set_xlabel("summit density σRη")
         ax.set_ylabel("F̄max error against the whole surface [%]")
-        ax.set_title(f"μ = {mu:g} (open marks: a second draw)")
+        ax.set_title(f"μ = {mu:g} (open: a second draw; ×: interacting stopped)",
+                     fontsize=9)
     axes[0].legend(fontsize=6)
     return fig
