@@ -151,6 +151,23 @@ def test_validation_all_unwritable_output_is_one_line_and_writes_nothing(tmp_pat
     assert sorted(p.name for p in tmp_path.iterdir()) == ["taken"]
 
 
+def test_the_summary_counts_in_words_and_names_the_report_it_summarises(capsys, monkeypatch):
+    """`validation rough-surface` writes its verdicts to rough_surface.md (there is no
+    report.md), and one pending item is one item."""
+    from argparse import Namespace
+
+    from validation import __main__ as validation_main
+
+    claims = [{"holds": True}, {"holds": False}, {"holds": False}]
+    validation_main._tell(Namespace(out="out", command="rough-surface"),
+                          {"files": ["rough_surface.md"], "rough_surface": claims})
+    assert "rough-surface claims: 1 holds, 2 fail, 0 notes (see rough_surface.md)" in (
+        capsys.readouterr().out)
+    monkeypatch.setattr(validation_main, "PENDING", ("one claim",))
+    validation_main._tell(Namespace(out="out", command="all"), {"files": ["report.md"]})
+    assert "not yet available: 1 item (see report.md)" in capsys.readouterr().out
+
+
 def test_validation_bad_compare_mu_is_one_line_and_writes_nothing(tmp_path):
     done = cli("validation", "rough-surface", "--out", str(tmp_path / "out"), "--compare-mu",
                "1", "-2")

@@ -236,18 +236,29 @@ def _run(args, command, out):
     return run_all(out, command, args)
 
 
+#: The report each command's verdicts are read in (`all`: the combined one).
+REPORTS = {"all": "report.md", "single-asperity": "single_asperity/report.md",
+           "rough-surface": "rough_surface.md"}
+
+
 def _tell(args, summary):
     """The summary for people."""
     print(f"wrote {', '.join(summary['files'])} to {args.out}/")
+    report = REPORTS.get(args.command, "report.md")
     for key, name in (("checks", "closed-form checks"), ("single_asperity", "single-asperity "
                       "claims"), ("rough_surface", "rough-surface claims")):
         if key in summary:
             verdicts = [v.get("verdict") or ("holds" if v["holds"] else "fails")
                         for v in summary[key]]
-            print(f"{name}: {verdicts.count('holds')} hold, {verdicts.count('fails')} fail, "
-                  f"{verdicts.count('note')} notes (see report.md)")
+            print(f"{name}: {_count(verdicts.count('holds'), 'holds', 'hold')}, "
+                  f"{_count(verdicts.count('fails'), 'fails', 'fail')}, "
+                  f"{_count(verdicts.count('note'), 'note', 'notes')} (see {report})")
     if args.command == "all" and PENDING:
-        print(f"not yet available: {len(PENDING)} items (see report.md)")
+        print(f"not yet available: {_count(len(PENDING), 'item', 'items')} (see {report})")
+
+
+def _count(n, one, many):
+    return f"{n} {one if n == 1 else many}"
 
 
 def main(argv=None):
