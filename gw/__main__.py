@@ -39,6 +39,9 @@ COMPARE_WARNING = 0.1
 POINTS_MAX = 10_000
 #: Laws solved at --mu (a curve of that solver), which takes mu in solver.solve.MU_RANGE only.
 SOLVED = ("fem", "bem")
+#: `--compare`'s name for the solved law's own interpolation error, a fraction of the law's
+#: largest |P̄| (not of F̄max: read beside relative_to_solved it looked like an error bar).
+LAW_ERROR = "law_interpolation_error_of_max_force"
 
 
 def _common(parser):
@@ -177,7 +180,8 @@ def _compare(args, mu, surface, scales):
         for name, row in rows.items():
             si = _si(scales, args, found[name].d_at_max, found[name].f_max)
             row["si"] = {"strength": si["F_Pa"], "d_at_max": si["d_m"]}
-    rows["solved"]["interpolation_error"] = laws["solved"].interpolation_error
+    # not an error bar on F_max: how well the tabulated law's PCHIP predicts its own samples
+    rows["solved"][LAW_ERROR] = laws["solved"].interpolation_error
     rows["solved"]["method"] = method
     off = rows["paper"]["relative_to_solved"]
     warning = (f"the paper's law puts F_max {off:+.1%} off the solved {method.upper()} law (more "
@@ -187,13 +191,13 @@ def _compare(args, mu, surface, scales):
         dump_json(out)
     else:
         si = ("strength_Pa", "d_at_max_m") if scales is not None else ()
-        print_table([{"law": name, "interpolation_error": None,
+        print_table([{"law": name, LAW_ERROR: None,
                       **{k: v for k, v in row.items() if k not in ("method", "si")},
                       **({f"{k}_{u}": row["si"][k] for k, u in (("strength", "Pa"),
                                                                  ("d_at_max", "m"))}
                          if si else {})}
                      for name, row in rows.items()],
-                    ("law", "f_max", "d_at_max", "relative_to_solved", "interpolation_error")
+                    ("law", "f_max", "d_at_max", "relative_to_solved", LAW_ERROR)
                     + si)
     if warning:
         print(f"warning: {warning}", file=sys.stderr)

@@ -295,7 +295,7 @@ def test_compare_puts_the_three_laws_side_by_side_and_warns(capsys, tmp_path, mo
     assert set(compared) >= {"paper", "refit", "solved", "warning"}
     assert compared["paper"]["f_max"] == plain["f_max"]
     assert compared["solved"]["relative_to_solved"] == 0.0
-    assert 0 < compared["solved"]["interpolation_error"] < 0.01
+    assert 0 < compared["solved"]["law_interpolation_error_of_max_force"] < 0.01
     off = compared["paper"]["f_max"] / compared["solved"]["f_max"] - 1.0
     assert compared["paper"]["relative_to_solved"] == pytest.approx(off)
     assert abs(off) > 0.1 and "paper's law" in compared["warning"] and "warning" in out.err
