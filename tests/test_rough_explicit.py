@@ -1,6 +1,8 @@
 """`validation.rough_explicit`: the quick tier's surface solved once, kept, read back; the same
 on a Dask cluster."""
 
+import copy
+
 import pytest
 
 from validation import rough_explicit
@@ -19,6 +21,15 @@ def test_a_surface_is_solved_once_then_read_from_the_store(tmp_path, monkeypatch
 
     monkeypatch.setattr("gw.explicit.compare", no_solving)
     assert rough_explicit.run_scenes(False, step=lambda text: None)[0][0] == first
+
+    # an interacting path that stopped once the force had turned compressive keeps its F̄max,
+    # and the report says how it stopped (no empty list of μ for the paths in tension)
+    stopped = copy.deepcopy(first)
+    interacting = stopped["models"]["interacting"]
+    interacting["stopped"], interacting["approach"][-1] = interacting["d"][-1] - 0.1, 0.5
+    text = rough_explicit.section({"full": False, "accuracy": "draft", "scenes": [stopped],
+                                   "wall_s": 1.0})
+    assert "stopped in compression" in text and "(μ = )" not in text
 
 
 @pytest.mark.filterwarnings("ignore::DeprecationWarning", "ignore::ResourceWarning",
@@ -55,3 +66,6 @@ def test_a_self_affine_surface_is_answered_from_its_measured_summits(tmp_path, m
     assert rough_explicit.solve_affine(spec) == record  # read back, not solved
     table = rough_explicit.affine_section([record])
     assert "| 0.3 | 1 | 1 |" in table and "Self-affine" in table
+    # a model left out (no equilibrium at the first separation) is a dash, not a KeyError
+    lone = {**record, "models": {k: v for k, v in models.items() if k != "interacting"}}
+    assert "— ✗" in rough_explicit.affine_section([lone])

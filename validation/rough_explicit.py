@@ -215,8 +215,8 @@ def section(summary):
             f"| {s['mu']:g} | {s['zeta']:g} | {s['sigma_r_eta']:g} | {s['seed']} | "
             f"{s['summits']} | "
             f"{m['whole']['f_max']:.4f} | {r['estimate']:.1e} | "
-            + " | ".join(_cell(e[k], r["holds"][k], not settled(m[k]["stopped"],
-                                                                   m[k]["approach"]))
+            + " | ".join(_cell(e[k], r["holds"][k], _stop(m[k]["stopped"] is not None,
+                                                           m[k]["approach"]))
                          for k in ("gw_paper", "gw_solved", "gw_sum", "interacting"))
             + f" | {m['whole']['jumps'][0]} | {m['whole']['seconds']:.1f} | "
               f"{m['interacting']['seconds']:.2f} |")
@@ -237,12 +237,16 @@ def section(summary):
               f"elastic far field. Neither holds on {neither}/{len(rows)} surfaces. "
               + (f"On {len(stopped)}/{len(rows)} surfaces the interacting model found no "
                  "equilibrium part-way down (contacts too large or too close for a point "
-                 f"load's far field); on {len(short)} of them (μ = "
-                 + ", ".join(f"{mu:g}" for mu in sorted({r["scene"]["mu"] for r in short}))
-                 + ") still in tension ('stopped' in the table: its F̄max is that of the path "
-                 "above, no answer)"
-                 + ("" if len(short) == len(stopped) else ", on the others once the total force "
-                    "had turned compressive, its F̄max behind it") + ". " if stopped else "")
+                 "load's far field): "
+                 + (f"on {len(short)} of them (μ = "
+                    + ", ".join(f"{mu:g}" for mu in sorted({r["scene"]["mu"] for r in short}))
+                    + ") still in tension ('stopped in tension' in the table: its F̄max is that "
+                    "of the path above, no answer)" if short else "")
+                 + ("; " if short and len(short) < len(stopped) else "")
+                 + ("on the others once the total force had turned compressive, its F̄max "
+                    "behind it ('stopped in compression', the rule the whole surface's own "
+                    "approach ends by)" if len(short) < len(stopped) else "")
+                 + ". " if stopped else "")
               + "GW's "
               "integral differs from the sum over the same summits by the sample alone: "
               f"with {summits} summits per surface (fewer where a cap covers another) the "
@@ -266,15 +270,24 @@ def section(summary):
     return "\n".join(lines)
 
 
-def _cell(error, holds, stopped):
-    """A model's error in the report: ✗ where it does not hold, 'stopped' where its path
-    ended without an equilibrium still in tension (`gw.explicit.compare.settled`)."""
-    return f"{error:+.1%}{' stopped' if stopped else ''}{'' if holds else ' ✗'}"
+def _stop(stopped, force):
+    """How a model's path ended: '' (it did not stop), 'in tension' (its F̄max no answer) or
+    'in compression' (its F̄max behind it: `gw.explicit.compare.settled`)."""
+    if not stopped:
+        return ""
+    return "in compression" if settled(True, force) else "in tension"
+
+
+def _cell(error, holds, stop=""):
+    """A model's error in the report: ✗ where it does not hold, how its path stopped
+    (`_stop`) where it found no equilibrium part-way."""
+    return f"{error:+.1%}{f' stopped {stop}' if stop else ''}{'' if holds else ' ✗'}"
 
 
 def _draw_spread(rows):
     """name → |error(draw a) − error(draw b)| over the surfaces drawn more than once (the
-    largest difference between draws of one surface whose paths did not stop)."""
+    largest difference between draws of one surface whose F̄max is the model's own: paths
+    that did not stop in tension)."""
     groups = {}
     for r in rows:
         s = r["scene"]
@@ -282,8 +295,8 @@ def _draw_spread(rows):
     spread = {}
     for k in ("gw_sum", "interacting"):
         for group in groups.values():
-            errors = [r["errors"][k] for r in group if r["holds"][k] or settled(
-                r["models"][k]["stopped"], r["models"][k]["approach"])]
+            errors = [r["errors"][k] for r in group
+                      if settled(r["models"][k]["stopped"], r["models"][k]["approach"])]
             if len(errors) > 1:
                 spread.setdefault(k, []).append(max(errors) - min(errors))
     return spread
@@ -299,7 +312,8 @@ def affine_section(records):
              "σ_s/ε, ω = 1) and the interacting asperities on the summits counted on the map "
              "(8-neighbour maxima, their mean radius R, μ at R), against the map solved whole. "
              "F̄max in 2πRΔγ per counted summit; error: F̄max/F̄max(whole) − 1; ✗: outside 10 % "
-             "(plus the estimate). 'needs': the cheapest model within that.", "",
+             "(plus the estimate); '—': no equilibrium at the first separation (left out). "
+             "'needs': the cheapest model within that.", "",
              "| μ | ζ (rms/ε) | seed | summits | ζ_s | σRη | pixel/√(Rε) | F̄max whole | ± | "
              "GW | interacting | needs | jumps in | whole s |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
@@ -310,11 +324,18 @@ def affine_section(records):
             f"| {s['mu']:g} | {s['zeta']:g} | {s['seed']} | {r['summits']} | "
             f"{r['zeta_s']:.2f} | {r['sigma_r_eta']:.3f} | {r['pixel_sqrt_r_eps']:.2f} | "
             f"{m['whole']['f_max']:.4f} | {r['estimate']:.1e} | "
-            + " | ".join(_cell(m[k]["error"], abs(m[k]["error"]) <= margin
-                               and m[k]["settled"], not m[k]["settled"])
-                         for k in ("gw", "interacting"))
+            + " | ".join(_affine_cell(m.get(k), margin) for k in ("gw", "interacting"))
             + f" | {r['needs']} | {r['jumps_in']} | {m['whole']['seconds']:.1f} |")
     return "\n".join(lines)
+
+
+def _affine_cell(model, margin):
+    """A model's cell in the self-affine table; '—' where it gave no answer (left out)."""
+    if model is None:
+        return "— ✗"
+    stop = "" if not model["stopped"] else (
+        "in compression" if model["settled"] else "in tension")
+    return _cell(model["error"], abs(model["error"]) <= margin and model["settled"], stop)
 
 
 def curves_figure(record):

@@ -180,8 +180,9 @@ def settled(stopped, force):
     """Whether a path's F_max is its own: it did not stop (`stopped` None), or it stopped
     where its total `force` (< 0 tensile) had turned compressive, its most tensile point
     behind it (past there each contact's force only grows compressive; a summit still to touch
-    would have to out-pull them all). A path that stopped in tension has an F_max that is
-    only that of the path above."""
+    would have to out-pull them all; the whole surface's own approach ends by the same rule,
+    `whole._solve`). A path that stopped in tension has an F_max that is only that of the path
+    above."""
     return stopped is None or bool(force[-1] >= 0.0)
 
 

@@ -29,8 +29,9 @@ CONTACT_GAP = 1.0
 @dataclass(frozen=True)
 class Jump:
     """One patch of pixels that jumped: `kind` "in" (toward contact) or "out", between the
-    separations `d_before` and `d_after` (ε), `centre` (row, column in pixels, the patch's
-    centroid), `pixels` (its size) and `force_change` (Σp̄ after − before)."""
+    separations `d_before` and `d_after` (ε), `centre` (row, column in pixels: the patch's
+    centroid; on a periodic map its circular mean, `_torus_centre`), `pixels` (its size) and
+    `force_change` (Σp̄ after − before)."""
 
     kind: str
     d_before: float
@@ -206,8 +207,10 @@ def _joined_across_edges(labels):
 
 
 def _torus_centre(patch):
-    """The centroid (row, column, pixels) of a patch on a periodic map: the mean angle of
-    its pixels around each axis, so a patch across an edge is centred on it."""
+    """The centre (row, column, pixels) of a patch on a periodic map: the mean angle of its
+    pixels around each axis (the circular mean), so a patch across an edge is centred on it.
+    It is the centroid for a patch symmetric about it, near it otherwise (an L of pixels: 19.03
+    against 19.05); for a band around the whole map it is arbitrary along the band."""
     centre = []
     for axis, n in enumerate(patch.shape):
         angle = 2.0 * np.pi * np.nonzero(patch)[axis] / n
