@@ -138,6 +138,19 @@ def test_out_writes_the_cantilever_figure(tmp_path):
     assert (tmp_path / "out" / "cantilever.png").read_bytes()[:4] == b"\x89PNG"
 
 
+def test_the_cantilever_figure_shows_both_snaps():
+    """On a soft lever the snap-out is far out (z̄ well past 10, where the view used to end):
+    the figure's axis covers the snap-in and the snap-out."""
+    from fem_asperity.solver.output import cantilever_figure
+
+    result = solve_curve(1.0, method="bem", accuracy="draft", spring_constant=0.05,
+                         error_estimate=False)
+    z_in, z_out = result.z_jumps["z_jump_in"], result.z_jumps["z_jump_out"]
+    assert z_out > 10.0
+    left, right = cantilever_figure(result).axes[0].get_xlim()
+    assert left < z_in < right and left < z_out < right
+
+
 def test_the_exact_sphere_on_a_soft_spring_lands_on_its_own_far_field():
     """R/ε = 30: the jump-out flies to δ̄o ≈ 800 ≫ R/ε, where the exact sphere pulls far less
     than Derjaguin's parabola; it lands where the spring balances that pull, the traction of

@@ -49,9 +49,15 @@ def plot_curve(result, path):
 
 
 def plot_cantilever(result, path):
+    """`cantilever_figure` saved at `path` (PNG)."""
+    return save_figure(cantilever_figure(result), path)
+
+
+def cantilever_figure(result):
     """The curve as an AFM records it under load-line control (`spring_constant` k̄): the
     cantilever's deflection −P̄/k̄ against the spring end's (piezo) position z̄ = δ̄o − P̄/k̄, both
-    in ε, approach and retraction, the jumps as horizontal segments at fixed z̄."""
+    in ε, approach and retraction, the jumps as horizontal segments at fixed z̄ (dotted lines
+    at their z̄; the view covers both)."""
     from matplotlib.figure import Figure
 
     k = result.spring_constant
@@ -62,12 +68,20 @@ def plot_cantilever(result, path):
         ax.plot(curve.delta - curve.p / k, -curve.p / k, "-", color=colour, label=name)
     ax.set_xlabel("piezo position z̄ = z/ε (spring end)")
     ax.set_ylabel("cantilever deflection z̄ − δ̄o = −P̄/k̄ (ε); > 0: bent toward the surface")
-    ax.set_xlim(None, 10.0)
+    # the far retraction is a flat line at zero; the view ends a fifth of the span past the
+    # farther jump (the snap-out, far out on a soft lever), or at z̄ = 10 without jumps
+    jumps = [z for z in (result.z_jumps or {}).values() if z is not None]
+    z_left = min(np.min(getattr(result, name).delta - getattr(result, name).p / k)
+                 for name in ("approach", "retraction"))
+    right = max(jumps) + 0.2 * (max(jumps) - z_left) if jumps else 10.0
+    ax.set_xlim(None, right)
+    for z in jumps:
+        ax.axvline(z, color="0.6", lw=0.8, ls=":")
     ax.grid(alpha=0.3)
     ax.legend()
     ax.set_title(f"{result.method.upper()}, μ = {result.mu:g}, k̄ = Kε/(2πRΔγ) = {k:g}, "
                  f"load-line control")
-    return save_figure(fig, path)
+    return fig
 
 
 def state_index(curve, delta, p):
