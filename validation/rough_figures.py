@@ -51,16 +51,21 @@ def plot_comparison(mus, *, eps_nm, method="bem", accuracy="default", sigma=2.0)
     a, b = fig.subplots(1, 2)
     d = np.linspace(0.0, 8.0, 161)
     surface = RoughSurface(sigma / eps_nm)
-    lowest = 0.0
+    tensile = []  # each curve's largest tension, > 0
     for k, mu in enumerate(mus):
         color = f"C{k}"
         for law, style in ((PaperLaw(mu), "--"), (solved_law(mu, method=method,
                                                              accuracy=accuracy), "-")):
             force, area = totals(law, surface, d)
-            lowest = min(lowest, force.min())
+            tensile.append(-force.min())
             a.plot(d, force, style, color=color, label=f"μ = {mu:g} {law.name}")
             b.plot(d, area, style, color=color)
-    a.set(xlabel="d / σ", ylabel="F̄ (repulsive part clipped)", ylim=(1.15 * lowest, -0.6 * lowest),
+    # symmetric log: F̄max spans decades over μ, and on a linear axis the weakest lay on zero;
+    # linear only within a tenth of the weakest curve's F̄max
+    weakest = min(t for t in tensile if t > 0)
+    a.set_yscale("symlog", linthresh=0.1 * weakest)
+    a.set(xlabel="d / σ", ylabel="F̄ (< 0 tensile; repulsive part clipped; symmetric log)",
+          ylim=(-1.5 * max(tensile), max(tensile)),
           title=f"σ = {sigma:g} nm: paper law (--) vs {method}")
     b.set(xlabel="d / σ", ylabel="S̄", yscale="log", ylim=(1e-4, None))
     a.legend(fontsize=7, ncol=2)
