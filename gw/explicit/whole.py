@@ -259,21 +259,21 @@ def _solve(heights, pixel, periodic, adhesion, top, step, lowest, resolution_eps
     space = PixelHalfSpace.build(heights.shape, compliance=adhesion.compliance(pixel),
                                  periodic=periodic)
     ljmap = LJMap(heights, space)
-    until = None
-    if separations is None:
-        top = _far_start(ljmap, top)
-        separations = top - step * np.arange(MAX_SEPARATIONS)
-        if lowest is not None:
-            separations = separations[separations >= lowest - 1e-9 * step]
-        else:
-            def until(forces):
-                return forces[-1] > 0.0 and min(forces) < 0.0
-    expected = max(top - float(np.mean(heights)), step) / step  # for the progress only
+    with threadpool_limits(BLAS_THREADS, user_api="blas"):  # _far_start relaxes too
+        until = None
+        if separations is None:
+            top = _far_start(ljmap, top)
+            separations = top - step * np.arange(MAX_SEPARATIONS)
+            if lowest is not None:
+                separations = separations[separations >= lowest - 1e-9 * step]
+            else:
+                def until(forces):
+                    return forces[-1] > 0.0 and min(forces) < 0.0
+        expected = max(top - float(np.mean(heights)), step) / step  # for the progress only
 
-    def approach_progress(fraction):
-        progress(0.5 * min(fraction * separations.size / expected, 0.99))
+        def approach_progress(fraction):
+            progress(0.5 * min(fraction * separations.size / expected, 0.99))
 
-    with threadpool_limits(BLAS_THREADS, user_api="blas"):
         approach, y = follow(ljmap, separations, ljmap.rest(),
                              jump_resolution=resolution_eps, until=until,
                              progress=approach_progress if progress else None)
