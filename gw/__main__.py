@@ -204,6 +204,19 @@ def _compare(args, mu, surface, scales):
     return 0
 
 
+def _other_reading(law, surface, found):
+    """Where ω < 1, how far McCool's reading of the summit heights is from the one used: eq.
+    21 as printed, φ̃ = ω/√(2π) exp(−ω²z̃²/2), spreads them over σ/ω; McCool's σ_s = ωσ over
+    ωσ, the printed form at ζω² with d̃ scaled by ω² (z̃ = ω²u). None at ω = 1."""
+    if surface.omega >= 1.0:
+        return None
+    other = strength(law, RoughSurface(surface.zeta * surface.omega**2, surface.omega))
+    return {"used": "eq. 21 as printed (summit heights of rms sigma/omega)",
+            "other": "McCool's reading (rms sigma_s = omega sigma)",
+            "f_max_other": other.f_max, "d_at_max_other": other.d_at_max * surface.omega**2,
+            "relative": other.f_max / found.f_max - 1.0}
+
+
 def _with_law(args, law):
     """`args` with --law replaced."""
     return argparse.Namespace(**{**vars(args), "law": law})
@@ -223,6 +236,9 @@ def main(argv=None):
     if args.command == "fmax":
         found = strength(law, surface)
         row = head | {"f_max": found.f_max, "d_at_max": found.d_at_max}
+        reading = _other_reading(law, surface, found)
+        if reading is not None:
+            row["omega_reading"] = reading
         if scales is not None:  # physical inputs: the same in SI
             si = _si(scales, args, found.d_at_max, found.f_max)
             row["si"] = {"strength": si["F_Pa"], "d_at_max": si["d_m"]}
@@ -232,7 +248,11 @@ def main(argv=None):
             si = {"strength [Pa]": row["si"]["strength"],
                   "d_at_max [m]": row["si"]["d_at_max"]} if scales is not None else {}
             print_table([{"quantity": k, "value": v} for k, v in (row | si).items()
-                         if k != "si"], ("quantity", "value"))
+                         if k not in ("si", "omega_reading")], ("quantity", "value"))
+        if reading is not None:
+            print(f"note: omega = {surface.omega:.4g} < 1: {reading['used']}; "
+                  f"{reading['other']} gives f_max {reading['f_max_other']:.4g} "
+                  f"({reading['relative']:+.0%})", file=sys.stderr)
         return 0
     lo, hi = separation_range(law, surface) if args.d is None else args.d
     d = np.linspace(lo, hi, args.points)

@@ -277,6 +277,25 @@ def test_curve_in_si_and_the_two_bodies(capsys):
     assert si["S_per_A0"] == pytest.approx(S * R * density * eps, rel=1e-12)
 
 
+def test_fmax_below_omega_one_says_how_far_mccools_reading_is(capsys):
+    """Eq. 21 as printed spreads the summits over σ/ω, McCool's σ_s = ωσ over ωσ: at ω = 0.6
+    fmax says which it used and gives the other's F̄max, equal to the printed form at ω = 1
+    with the summits' own ζ_s = ωζ (heights in σ_s, another route through the integrator)."""
+    from gw.__main__ import main
+
+    assert main(["fmax", "--mu", "1", "--zeta", "3", "--omega", "0.6", "--json"]) == 0
+    out = capsys.readouterr()
+    row = json.loads(out.out)
+    reading = row["omega_reading"]
+    direct = strength(PaperLaw(1.0), RoughSurface(3 * 0.6, 1.0))
+    assert reading["f_max_other"] == pytest.approx(direct.f_max, rel=1e-6)
+    assert reading["d_at_max_other"] == pytest.approx(direct.d_at_max * 0.6, rel=1e-4)
+    assert reading["relative"] == pytest.approx(direct.f_max / row["f_max"] - 1.0, rel=1e-6)
+    assert "McCool" in out.err and "as printed" in out.err
+    assert main(["fmax", "--mu", "1", "--zeta", "3", "--json"]) == 0  # ω = 1: one reading
+    assert "omega_reading" not in json.loads(capsys.readouterr().out)
+
+
 def test_compare_puts_the_three_laws_side_by_side_and_warns(capsys, tmp_path, monkeypatch):
     """`fmax --compare`: paper, refit and solved F̄max with their differences from the solved one;
     the paper's equals plain `fmax`; the warning appears where the difference exceeds
