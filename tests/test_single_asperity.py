@@ -85,6 +85,21 @@ def test_data_made_by_the_papers_laws_satisfy_every_claim_but_the_onset():
     assert all(held.values()), held
 
 
+def test_eq_6b_is_judged_where_the_papers_contact_radius_is_not_zero():
+    """At μ = 0.19 eq. 6b gives ā_c = 0; any FE contact there was a 100 % relative deviation
+    and failed the law that Fig. 3 shows within about 7 % above it. Judged relatively where
+    the paper's ā_c is not 0, the FE's value at the threshold reported as it is."""
+    rows = synthetic_rows(laws=PAPER_LAWS)
+    for row in rows:
+        if row["mu"] == PAPER_LAWS.mu_a:
+            row["a_c"] = 0.1
+    _, deviations = refit_with_intervals(rows, onset=0.5)
+    found = {v["claim"].split(":")[0]: v
+             for v in verdicts(rows, 0.5, deviations, _transition(rows, 0.5))}
+    assert found["eq. 6b"]["holds"] and deviations["a_c"]["mu_range"][0] > PAPER_LAWS.mu_a
+    assert "where the paper's is 0, the FE's a_c = 0.1" in found["eq. 6b"]["measured"]
+
+
 def test_data_made_by_other_constants_fail_where_they_differ():
     held = _judged(synthetic_rows(), onset=TRUE["mu_jump"])
     assert not held["eq. 7"] and not held["eq. 10"]  # c_oc 0.7, c_star 1.7: 24-32% off

@@ -99,15 +99,23 @@ def refit_with_intervals(rows, onset):
             refit[key] = {"value": float(value), "ci95": [float(a), float(b)], "paper": p,
                           "constant": name, "mu_range": mu_range, "rms_residual": rms}
         varying = model(x, *paper) - offset, y - offset
-        if event == "a_c":  # eq. 6b from the paper's threshold on; below it eq. 6a, judged apart
-            keep = x >= PAPER_LAWS.mu_a
+        zero = None
+        if event == "a_c":
+            # eq. 6b relative to the FE only where the paper's ā_c is not 0 (above its
+            # threshold: at μ = 0.19 itself any FE contact is a 100 % deviation); at the
+            # threshold the FE's ā_c is reported as it is, below it eq. 6a is judged apart
+            at = np.isclose(x, PAPER_LAWS.mu_a)
+            if at.any():
+                zero = {"mu": float(x[at][0]), "a_c": float(y[at][0])}
+            keep = x > PAPER_LAWS.mu_a * (1 + 1e-9)
             x, varying = x[keep], (varying[0][keep], varying[1][keep])
         difference = np.abs(varying[0] - varying[1])
         with np.errstate(divide="ignore", invalid="ignore"):  # 0/0 masked below; x/0: inf
             deviation = np.where(difference == 0.0, 0.0, difference / np.abs(varying[1]))
         k = int(np.argmax(deviation))
         deviations[event] = {"largest": float(deviation[k]), "at_mu": float(x[k]),
-                             "mu_range": [float(x.min()), float(x.max())], "points": int(x.size)}
+                             "mu_range": [float(x.min()), float(x.max())], "points": int(x.size),
+                             "where_paper_is_zero": zero}
     return refit, deviations
 
 
@@ -132,13 +140,17 @@ def _verdict(claim, paper, measured, error, tolerance):
 def verdicts(rows, onset, deviations, transition):
     """Each claim of the paper with the FE's measurement."""
     names = {"p_off": "eq. 2 (Wu): pull-off force, P_off + 1",
-             "a_c": "eq. 6b: a_c = 0.83 (mu - 0.19)^1/2 at P_max, mu >= 0.19",
+             "a_c": "eq. 6b: a_c = 0.83 (mu - 0.19)^1/2 at P_max, mu > 0.19 (judged where "
+                    "it is not 0)",
              "delta_oc": "eq. 7: delta_oc - 1 = 0.922 mu (mu < 0.5)",
              "delta_o_star": "eq. 10: delta_o* - 1 = 2.116 mu^1.5 (mu < 0.5)",
              "x_oc": "eq. 12: x_oc = -0.3 + 2.2 mu^0.4 (jump-in)"}
     found = [_verdict(names[e], "the fit",
                       f"largest relative deviation at mu = {d['at_mu']:g} "
-                      f"(range {d['mu_range'][0]:g}-{d['mu_range'][1]:g})",
+                      f"(range {d['mu_range'][0]:g}-{d['mu_range'][1]:g})"
+                      + ("" if not d.get("where_paper_is_zero") else
+                         f"; at mu = {d['where_paper_is_zero']['mu']:g}, where the paper's is "
+                         f"0, the FE's a_c = {d['where_paper_is_zero']['a_c']:.3g}"),
                       d["largest"], FIT_TOLERANCE) for e, d in deviations.items()]
     below = [r for r in rows if r["mu"] < PAPER_LAWS.mu_a]
     if below:
@@ -299,7 +311,9 @@ def section(summary):
              "with its error estimate; the BEM at the same mu as the independent cross-check. "
              "A fitted law holds where the part of it that varies with mu (P_off + 1, a_c, "
              f"delta_oc - 1, delta_o* - 1, x_oc) stays within {FIT_TOLERANCE:.0%} of the FE's at "
-             "every mu of the range where the paper applies it; a constant of the text within "
+             "every mu of the range where the paper applies it (eq. 6b where its a_c is not "
+             "0: above mu = 0.19, the FE's a_c at 0.19 reported as it is); a constant of the "
+             "text within "
              f"{CONSTANT_TOLERANCE:.0%} of the measured one. The refit's 95% intervals come from "
              "the fit's covariance: the FE data are deterministic, so they measure how far the "
              "paper's form misses the FE, not noise. "
