@@ -124,6 +124,7 @@ def test_validation_all_writes_its_files(tmp_path, monkeypatch, capsys):
     assert summary["law_comparison"][0]["mu"] == 1.0
     report = (out / "report.md").read_text()
     assert "Not yet judged" in report and "| holds |" in report
+    assert report.index("## Summary") < report.index("## Closed-form checks")
     assert "Paper's law against the solved law" in report
     assert "Single asperity (FE sweeps)" in report
     assert "Layered media" in report
@@ -158,7 +159,7 @@ def test_the_summary_counts_in_words_and_names_the_report_it_summarises(capsys, 
 
     from validation import __main__ as validation_main
 
-    claims = [{"holds": True}, {"holds": False}, {"holds": False}]
+    claims = [{"claim": name, "holds": name == "a"} for name in "abc"]
     validation_main._tell(Namespace(out="out", command="rough-surface"),
                           {"files": ["rough_surface.md"], "rough_surface": claims})
     assert "rough-surface claims: 1 holds, 2 fail, 0 notes (see rough_surface.md)" in (
@@ -166,6 +167,18 @@ def test_the_summary_counts_in_words_and_names_the_report_it_summarises(capsys, 
     monkeypatch.setattr(validation_main, "PENDING", ("one claim",))
     validation_main._tell(Namespace(out="out", command="all"), {"files": ["report.md"]})
     assert "not yet available: 1 item (see report.md)" in capsys.readouterr().out
+
+
+def test_the_report_opens_with_its_verdicts_counted_and_what_fails():
+    from validation.__main__ import verdict_counts
+    from validation.report import render
+
+    claims = [{"claim": "eq. 2 holds", "holds": True}, {"claim": "eq. 7 is off", "holds": False}]
+    text = render([], [], "python -m validation all",
+                  counts=verdict_counts({"single_asperity": claims}))
+    summary = text[text.index("## Summary"):text.index("## Closed-form checks")]
+    assert "- single-asperity claims: 1 holds, 1 fails, 0 notes" in summary
+    assert "The claims that fail:\n\n- eq. 7 is off" in summary
 
 
 def test_validation_bad_compare_mu_is_one_line_and_writes_nothing(tmp_path):

@@ -194,14 +194,16 @@ def run_all(out, command, args):
     layered, layered_summary = _layered(out, args, 9, 10, command)
     files = FILES + SINGLE_FILES + ROUGH_FILES + EXPLICIT_FILES + LAYERED_FILES
     wall_s = time.perf_counter() - start
+    summary = {"files": [name for name, _ in files],
+               "checks": [c.as_dict() for c in checks], **single_summary, **rough_summary,
+               **explicit_summary, **layered_summary,
+               "not_yet_available": [{"item": i, "needs": n} for i, n in PENDING],
+               "wall_s": wall_s}
     write_atomic(out / "report.md", render(checks, files, command, rough_section(rough),
                                            single_section(single), layered_section(layered),
-                                           explicit_section(explicit), wall_s=wall_s))
-    return {"files": [name for name, _ in files],
-            "checks": [c.as_dict() for c in checks], **single_summary, **rough_summary,
-            **explicit_summary, **layered_summary,
-            "not_yet_available": [{"item": i, "needs": n} for i, n in PENDING],
-            "wall_s": wall_s}
+                                           explicit_section(explicit), wall_s=wall_s,
+                                           counts=verdict_counts(summary)))
+    return summary
 
 
 def _accuracy(out, args, command):
@@ -241,18 +243,29 @@ REPORTS = {"all": "report.md", "single-asperity": "single_asperity/report.md",
            "rough-surface": "rough_surface.md"}
 
 
-def _tell(args, summary):
-    """The summary for people."""
-    print(f"wrote {', '.join(summary['files'])} to {args.out}/")
-    report = REPORTS.get(args.command, "report.md")
+def verdict_counts(summary):
+    """One line per kind of claim in `summary` ('closed-form checks: 12 hold, 1 fails, 3
+    notes'), then the claims that fail, by name."""
+    lines, failing = [], []
     for key, name in (("checks", "closed-form checks"), ("single_asperity", "single-asperity "
                       "claims"), ("rough_surface", "rough-surface claims")):
         if key in summary:
             verdicts = [v.get("verdict") or ("holds" if v["holds"] else "fails")
                         for v in summary[key]]
-            print(f"{name}: {_count(verdicts.count('holds'), 'holds', 'hold')}, "
-                  f"{_count(verdicts.count('fails'), 'fails', 'fail')}, "
-                  f"{_count(verdicts.count('note'), 'note', 'notes')} (see {report})")
+            lines.append(f"{name}: {_count(verdicts.count('holds'), 'holds', 'hold')}, "
+                         f"{_count(verdicts.count('fails'), 'fails', 'fail')}, "
+                         f"{_count(verdicts.count('note'), 'note', 'notes')}")
+            failing += [v["claim"] for v, verdict in zip(summary[key], verdicts)
+                        if verdict == "fails"]
+    return lines, failing
+
+
+def _tell(args, summary):
+    """The summary for people."""
+    print(f"wrote {', '.join(summary['files'])} to {args.out}/")
+    report = REPORTS.get(args.command, "report.md")
+    for line in verdict_counts(summary)[0]:
+        print(f"{line} (see {report})")
     if args.command == "all" and PENDING:
         print(f"not yet available: {_count(len(PENDING), 'item', 'items')} (see {report})")
 

@@ -31,8 +31,24 @@ def provenance(command):
             f"commit {git_commit(HERE) or 'unknown'}, {now}, on {machine_phrase()}.")
 
 
-def render(checks, files, command, rough="", single="", layered="", explicit="", wall_s=None):
-    """The report as Markdown text; `wall_s`: how long the run that wrote it took."""
+def _summary(counts):
+    """The summary block: the verdict counts, then the claims that fail, by name."""
+    if counts is None:
+        return []
+    lines, failing = counts
+    block = ["## Summary", ""] + [f"- {line}" for line in lines]
+    if PENDING:
+        block.append(f"- not yet judged: {len(PENDING)} "
+                     f"{'item' if len(PENDING) == 1 else 'items'}")
+    if failing:
+        block += ["", "The claims that fail:", ""] + [f"- {claim}" for claim in failing]
+    return block + [""]
+
+
+def render(checks, files, command, rough="", single="", layered="", explicit="", wall_s=None,
+           counts=None):
+    """The report as Markdown text; `wall_s`: how long the run that wrote it took; `counts`:
+    (lines, failing claims) for the summary at the top (`validation.__main__.verdict_counts`)."""
     took = [] if wall_s is None else [
         "", f"This run took {wall_s:.0f} s (curves not in the store were solved; a second run "
             "reads them)."]
@@ -43,6 +59,7 @@ def render(checks, files, command, rough="", single="", layered="", explicit="",
         "# Verification report: Song & Komvopoulos, adhesive contact of an elastic half-space "
         "with a rigid rough surface",
         "",
+        *_summary(counts),
         "## Closed-form checks (no FE)",
         "",
         "Each row compares a constant or limit of the paper's laws with an independently derived",
