@@ -72,8 +72,9 @@ print(f"relative error estimate of the pull-off force: {estimate.get('p_off', fl
 # %%
 # The polymer as a film, FILM nm thick on silicon (E* = 169 GPa/(1 − 0.22²)), under the same
 # cantilever, solved here by the finite elements (the boundary integral takes the bonded layer
-# too, through its layered kernel: docs/layered.md). μ is now the silicon's, far below the polymer's: the elements are
-# sized for the film's own Tabor parameter, the more compliant material (the result says so).
+# too, through its layered kernel: docs/layered.md). μ is now the silicon's, far below the
+# polymer's: the elements are sized for the film's own Tabor parameter, the more compliant
+# material (the result says so).
 # The film is thinner than the tip's contact zone is wide, so the stiff substrate shows
 # through: the contact is stiffer than on bulk polymer.
 
