@@ -25,7 +25,7 @@ from fem_asperity.solver.solve import solvable_mu
 from .closed_forms import closed_form_checks
 from .law_figure import law_table, plot_laws
 from .layered import section as layered_section
-from .report import PENDING, provenance, render
+from .report import PENDING, counted, provenance, render
 from .rough_explicit import section as explicit_section
 from .rough_surface import COMPARISON_MU
 from .rough_surface import run as run_rough_surface
@@ -252,9 +252,9 @@ def verdict_counts(summary):
         if key in summary:
             verdicts = [v.get("verdict") or ("holds" if v["holds"] else "fails")
                         for v in summary[key]]
-            lines.append(f"{name}: {_count(verdicts.count('holds'), 'holds', 'hold')}, "
-                         f"{_count(verdicts.count('fails'), 'fails', 'fail')}, "
-                         f"{_count(verdicts.count('note'), 'note', 'notes')}")
+            lines.append(f"{name}: {counted(verdicts.count('holds'), 'holds', 'hold')}, "
+                         f"{counted(verdicts.count('fails'), 'fails', 'fail')}, "
+                         f"{counted(verdicts.count('note'), 'note', 'notes')}")
             failing += [v["claim"] for v, verdict in zip(summary[key], verdicts)
                         if verdict == "fails"]
     return lines, failing
@@ -267,11 +267,7 @@ def _tell(args, summary):
     for line in verdict_counts(summary)[0]:
         print(f"{line} (see {report})")
     if args.command == "all" and PENDING:
-        print(f"not yet available: {_count(len(PENDING), 'item', 'items')} (see {report})")
-
-
-def _count(n, one, many):
-    return f"{n} {one if n == 1 else many}"
+        print(f"not yet available: {counted(len(PENDING), 'item', 'items')} (see {report})")
 
 
 def main(argv=None):

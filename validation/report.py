@@ -31,6 +31,11 @@ def provenance(command):
             f"commit {git_commit(HERE) or 'unknown'}, {now}, on {machine_phrase()}.")
 
 
+def counted(n, one, many):
+    """'1 item', '2 items': `n` with the noun (or verb) that agrees with it."""
+    return f"{n} {one if n == 1 else many}"
+
+
 def _summary(counts):
     """The summary block: the verdict counts, then the claims that fail, by name."""
     if counts is None:
@@ -38,8 +43,7 @@ def _summary(counts):
     lines, failing = counts
     block = ["## Summary", ""] + [f"- {line}" for line in lines]
     if PENDING:
-        block.append(f"- not yet judged: {len(PENDING)} "
-                     f"{'item' if len(PENDING) == 1 else 'items'}")
+        block.append(f"- not yet judged: {counted(len(PENDING), 'item', 'items')}")
     if failing:
         block += ["", "The claims that fail:", ""] + [f"- {claim}" for claim in failing]
     return block + [""]
