@@ -3,7 +3,8 @@ with --help).
 
 fmax: the strength of adhesion F̄max and the separation d̃ where it occurs; curve: the total force
 F̄ and contact area S̄ against d̃. Inputs dimensionless (--mu, --zeta, --omega or --sigma-r-eta)
-or in SI; the asperity law is the paper's, refitted, or a solved FE/BEM curve (--law).
+or in SI; the asperity law is the paper's, the shipped table of solved laws, refitted, or a
+solved FE/BEM curve (--law). law-table: rebuild that table and measure its error.
 explicit: your own topography (a height map) answered by GW, interacting asperities and the
 whole surface solved, in SI, with the model the surface needs."""
 
@@ -27,6 +28,7 @@ from fem_asperity.studies.refit import stored_refit
 
 from .explicit import cli as explicit_command
 from .integrate import D_MAX, check_stiffness, separation_range, strength, totals
+from .law_table import TABLE_FILE, TableLaw, shipped_table
 from .laws import PaperLaw
 from .surface import RoughSurface, omega_mccool
 from .tables import solved_law
@@ -39,6 +41,7 @@ COMPARE_WARNING = 0.1
 POINTS_MAX = 10_000
 #: Laws solved at --mu (a curve of that solver), which takes mu in solver.solve.MU_RANGE only.
 SOLVED = ("fem", "bem")
+LAWS = ("paper", "solved", "refit") + SOLVED
 #: `--compare`'s name for the solved law's own interpolation error, a fraction of the law's
 #: largest |P̄| (not of F̄max: read beside relative_to_solved it looked like an error bar).
 LAW_ERROR = "law_interpolation_error_of_max_force"
@@ -55,8 +58,10 @@ def _common(parser):
     physical.add_argument("--sigma", type=float, help="rms roughness [m]")
     physical.add_argument("--density", type=float, help="asperity density eta [1/m^2]")
     add_physical_arguments(physical)
-    parser.add_argument("--law", choices=("paper", "refit", "fem", "bem"), default="paper",
-                        help="paper: the paper's closed forms; refit: the same forms with the "
+    parser.add_argument("--law", choices=LAWS, default="paper",
+                        help="paper: the paper's closed forms; solved: the table of BEM-solved "
+                             "laws shipped with the package (mu 0.01-50, no solve; its measured "
+                             "error goes into the output); refit: the paper's forms with the "
                              "constants refitted from BEM curves (stored); fem, bem: the approach "
                              "curve of that solver at this mu, solved once and stored "
                              "(default: paper)")
@@ -86,6 +91,14 @@ def build_parser():
     curve.add_argument("--points", type=int, default=101,
                        help=f"number of d values, 2 to {POINTS_MAX} (default: %(default)s)")
     explicit_command.add_parser(commands)
+    table = commands.add_parser("law-table", help="rebuild the table of solved laws (--law "
+                                "solved) from the sweep engine and measure its error")
+    table.add_argument("--out", help="the table file (default: the package's own, "
+                                     f"{TABLE_FILE.name})")
+    table.add_argument("--jobs", type=int, help="worker processes (default: one per core)")
+    table.add_argument("--report", help="also write the measured errors as Markdown to this "
+                                        "file (docs/law_table.md is this)")
+    table.add_argument("--json", action="store_true", help="print the errors as JSON")
     return parser
 
 
@@ -119,9 +132,12 @@ def _check(args, parser, mu, surface):
     check_stiffness(PaperLaw(mu), surface)
     if args.law in SOLVED or compare:
         solvable_mu(mu, "mu of a solved law (--law fem|bem, fmax --compare)")
-    if args.accuracy is not None and args.law == "paper" and not compare:
+    if args.law == "solved":
+        shipped_table().check_mu(mu)
+    if args.accuracy is not None and args.law in ("paper", "solved") and not compare:
         parser.error(f"{args.command}: --accuracy applies to --law refit|fem|bem and fmax "
-                     "--compare (the paper's law is closed-form: nothing to resolve)")
+                     "--compare (the paper's law is closed-form and the table's resolution "
+                     "is fixed: nothing to resolve)")
     if args.command == "fmax":
         if args.warn_above is not None and not compare:
             parser.error("fmax: --warn-above needs --compare")
@@ -141,6 +157,8 @@ def _check(args, parser, mu, surface):
 def _law(args, mu):
     if args.law == "paper":
         return PaperLaw(mu)
+    if args.law == "solved":
+        return shipped_table().law(mu)
     accuracy = args.accuracy or "default"
     if args.law == "refit":
         fit = stored_refit(accuracy=accuracy, announce=partial(print, file=sys.stderr))
@@ -217,6 +235,66 @@ def _other_reading(law, surface, found):
             "relative": other.f_max / found.f_max - 1.0}
 
 
+def _fmax(args, law, surface, scales, head):
+    """`fmax` without --compare: F̄max, its d̃, the other ω reading, SI values, the table's
+    error (--law solved) and, for the paper's law, a warning where the table puts it off."""
+    found = strength(law, surface)
+    row = head | {"f_max": found.f_max, "d_at_max": found.d_at_max}
+    if isinstance(law, TableLaw):
+        row["law_error"] = _table_error(law, found.f_max)
+    reading = _other_reading(law, surface, found)
+    if reading is not None:
+        row["omega_reading"] = reading
+    if scales is not None:  # physical inputs: the same in SI
+        si = _si(scales, args, found.d_at_max, found.f_max)
+        row["si"] = {"strength": si["F_Pa"], "d_at_max": si["d_m"]}
+    warning = _paper_warning(law, surface, found) if args.law == "paper" else None
+    if warning is not None:
+        row["warning"] = warning
+    if args.json:
+        dump_json(row)
+    else:
+        extra = {"strength [Pa]": row["si"]["strength"],
+                 "d_at_max [m]": row["si"]["d_at_max"]} if scales is not None else {}
+        if "law_error" in row:
+            extra["f_max_law_error"] = row["law_error"]["f_max"]
+        print_table([{"quantity": k, "value": v} for k, v in (row | extra).items()
+                     if k not in ("si", "omega_reading", "law_error", "warning")],
+                    ("quantity", "value"))
+    if reading is not None:
+        print(f"note: omega = {surface.omega:.4g} < 1: {reading['used']}; "
+              f"{reading['other']} gives f_max {reading['f_max_other']:.4g} "
+              f"({reading['relative']:+.0%})", file=sys.stderr)
+    if warning is not None:
+        print(f"warning: {warning}", file=sys.stderr)
+    return 0
+
+
+def _table_error(law, f_max=None):
+    """The table's measured error for a `TableLaw` result: P̄ and the jump-in δ̄o always; with
+    F̄max, its absolute error (the relative one measured over the table's ζ)."""
+    error = law.error
+    out = {"measured_at_mu": error["held_out"], "force": error["force"], "jump": error["jump"]}
+    if f_max is not None:
+        out |= {"f_max": error["f_max"] * f_max, "f_max_relative": error["f_max"]}
+    return out
+
+
+def _paper_warning(law, surface, found):
+    """A warning where the table of solved laws puts the paper's F̄max off by more than
+    COMPARE_WARNING (None within it, or outside the table's μ)."""
+    table = shipped_table()
+    lo, hi = table.mu_range
+    if not lo <= law.mu <= hi:
+        return None
+    solved = strength(table.law(law.mu), surface).f_max
+    off = found.f_max / solved - 1.0
+    if abs(off) <= COMPARE_WARNING:
+        return None
+    return (f"the paper's law puts F_max {off:+.0%} off the solved law (the shipped table of "
+            f"BEM solves; --law solved uses it, fmax --compare shows both)")
+
+
 def _with_law(args, law):
     """`args` with --law replaced."""
     return argparse.Namespace(**{**vars(args), "law": law})
@@ -227,6 +305,8 @@ def main(argv=None):
     args = parser.parse_args(argv)
     if args.command == "explicit":
         return explicit_command.main(args, parser)
+    if args.command == "law-table":
+        return _law_table(args, parser)
     mu, surface, scales = _inputs(args, parser)
     _check(args, parser, mu, surface)
     if args.command == "fmax" and args.compare:
@@ -234,26 +314,9 @@ def main(argv=None):
     law = _law(args, mu)
     head = {"mu": mu, "zeta": surface.zeta, "omega": surface.omega, "law": args.law}
     if args.command == "fmax":
-        found = strength(law, surface)
-        row = head | {"f_max": found.f_max, "d_at_max": found.d_at_max}
-        reading = _other_reading(law, surface, found)
-        if reading is not None:
-            row["omega_reading"] = reading
-        if scales is not None:  # physical inputs: the same in SI
-            si = _si(scales, args, found.d_at_max, found.f_max)
-            row["si"] = {"strength": si["F_Pa"], "d_at_max": si["d_m"]}
-        if args.json:
-            dump_json(row)
-        else:
-            si = {"strength [Pa]": row["si"]["strength"],
-                  "d_at_max [m]": row["si"]["d_at_max"]} if scales is not None else {}
-            print_table([{"quantity": k, "value": v} for k, v in (row | si).items()
-                         if k not in ("si", "omega_reading")], ("quantity", "value"))
-        if reading is not None:
-            print(f"note: omega = {surface.omega:.4g} < 1: {reading['used']}; "
-                  f"{reading['other']} gives f_max {reading['f_max_other']:.4g} "
-                  f"({reading['relative']:+.0%})", file=sys.stderr)
-        return 0
+        return _fmax(args, law, surface, scales, head)
+    if isinstance(law, TableLaw):
+        head["law_error"] = _table_error(law)
     lo, hi = separation_range(law, surface) if args.d is None else args.d
     d = np.linspace(lo, hi, args.points)
     force, area = totals(law, surface, d)
@@ -266,6 +329,35 @@ def main(argv=None):
         dump_json(head | {k: columns[k].tolist() for k in "dFS"} | si)
     else:
         print_table([dict(zip(columns, row)) for row in zip(*columns.values())], tuple(columns))
+        if "law_error" in head:
+            e = head["law_error"]
+            print(f"note: the table's law is off the solved one by |dP| <= {e['force']:.1e} "
+                  f"(2 pi R dgamma) away from the jump-in, measured at mu = "
+                  + ", ".join(f"{m:.4g}" for m in e["measured_at_mu"]), file=sys.stderr)
+    return 0
+
+
+def _law_table(args, parser):
+    """`law-table`: rebuild the table (solving what the store lacks) and print its errors."""
+    from fem_asperity.plumbing.files import write_atomic
+
+    from .law_table_build import build_table, report
+
+    if args.jobs is not None and args.jobs < 1:
+        parser.error(f"law-table: --jobs must be >= 1; got {args.jobs}")
+    bar = ProgressBar("curves of the table (stored for next time)")
+    table = build_table(args.out or TABLE_FILE, jobs=args.jobs, progress=bar)
+    bar.close()
+    rows = [{"held_out_mu": e["held_out"], "force": e["force"], "jump": e["jump"],
+             "f_max_relative": max((abs(x) for x in e["f_max"] if x is not None), default=None)}
+            for e in table.errors]
+    if args.json:
+        dump_json({"record": table.record, "errors": list(table.errors)})
+    else:
+        print_table(rows, ("held_out_mu", "force", "jump", "f_max_relative"))
+        print(f"wrote {args.out or TABLE_FILE}", file=sys.stderr)
+    if args.report:
+        write_atomic(args.report, report(table))
     return 0
 
 

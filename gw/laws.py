@@ -101,6 +101,11 @@ class TabulatedLaw:
         slope = float(lo[2](lo[0], 1))  # dP̄/dδ̄o < 0 at the deepest point
         self._hertz_gap = (np.pi * abs(slope) * mu**1.5) ** 2  # δ_H − δ̄₀
 
+    @property
+    def solved_range(self):
+        """(deepest, farthest) δ̄o [ε] of the path; the continuations lie beyond."""
+        return self._last, self._first
+
     def _piecewise(self, delta, column):
         delta = np.asarray(delta, dtype=float)
         out = np.zeros(delta.shape)

@@ -210,7 +210,9 @@ def test_cli_fmax_and_curve_json():
     done = gw_cli("fmax", "--mu", "1", "--zeta", "6.67", "--omega", "0.9", "--json")
     assert done.returncode == 0, done.stderr
     row = json.loads(done.stdout)
-    assert set(row) == {"mu", "zeta", "omega", "law", "f_max", "d_at_max", "omega_reading"}
+    # the warning: the table of solved laws puts the paper's F̄max 64 % off at μ = 1
+    assert set(row) == {"mu", "zeta", "omega", "law", "f_max", "d_at_max", "omega_reading",
+                        "warning"}
     expected = strength(PaperLaw(1.0), RoughSurface(6.67, 0.9))
     assert row["f_max"] == pytest.approx(expected.f_max, rel=1e-12)
     done = gw_cli("curve", "--mu", "10", "--zeta", "2", "--sigma-r-eta", "0.05", "--d", "0",
