@@ -166,6 +166,11 @@ class TableLaw:
         return finite_result(self._blend(delta, "area"), AREA)
 
     @property
+    def delta_jump_in(self):
+        """δ̄o of the jump-in [ε] (None below the onset)."""
+        return float(self.landmarks[1]) if self.jumps else None
+
+    @property
     def f_max_error(self):
         """The table's relative F̄max error (`error['f_max']`): the largest measured."""
         return self.error["f_max"]

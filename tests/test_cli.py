@@ -121,6 +121,9 @@ def test_validation_all_writes_its_files(tmp_path, monkeypatch, capsys):
         assert set(verdict) == {"claim", "paper", "measured", "error", "holds"}
     assert summary["not_yet_available"]  # says what is not there yet
     assert {r["claim"] for r in summary["rough_surface"]} >= {"F̄max → 0.75 as μ → ∞"}
+    # judged again with the shipped table of solved laws: its approach lands below 0.75
+    solved = {r["claim"]: r["verdict"] for r in summary["rough_surface_solved_law"]}
+    assert solved["F̄max → 0.75 as μ → ∞"] == "fails"
     assert summary["law_comparison"][0]["mu"] == 1.0
     report = (out / "report.md").read_text()
     assert "Not yet judged" in report and "| holds |" in report

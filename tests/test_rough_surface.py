@@ -24,3 +24,19 @@ def test_the_paper_against_solved_table_gives_the_ratio_and_the_verdict():
     table = comparison_table([close, row])
     assert "holds (F̄max within 10% of the solved law's) on 1 of 2 rows" in table
     assert "| 0.950 | holds |" in table and "| 0.581 | fails: -42% |" in table
+
+
+def test_the_solved_approach_tends_to_jkrs_landing_not_to_its_pull_off():
+    """F̄max of a nearly smooth surface (ζ = 0.01) is the asperity's largest tension on approach.
+    Under displacement control a JKR contact lands at δ = 0 with P̄ = −2/3 (its pull-off, −0.75,
+    is on retraction); the solved approach heads there as μ grows, so the paper's "F̄max → 0.75
+    as μ → ∞" (its law's approach reaches 0.75) fails with the solved law."""
+    from fem_asperity.closed_forms.reference import jkr_force, jkr_radius_at_approach
+    from gw.law_table import shipped_table
+    from validation.rough_surface import f_max
+
+    landing = -jkr_force(radius=jkr_radius_at_approach(approach=0.0, mu=50.0), mu=50.0)
+    assert abs(landing - 2.0 / 3.0) < 1e-12
+    solved = [f_max(mu, 0.01, law_at=shipped_table().law) for mu in (10.0, 20.0, 50.0)]
+    assert 0.75 > solved[0] > solved[1] > solved[2] > landing
+    assert abs(f_max(1e4, 0.01) - 0.75) < 2e-3  # the paper's law: its approach reaches 0.75

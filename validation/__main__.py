@@ -137,7 +137,9 @@ def _rough(out, args, first_step, total):
     rough = run_rough_surface(out, compare_mu=args.compare_mu, accuracy=args.accuracy,
                               refit_method=args.refit_method,
                               step=lambda text: _step(next(steps), text, total))
-    return rough, {"rough_surface": rough["verdicts"], "law_comparison": rough["law_comparison"]}
+    return rough, {"rough_surface": rough["verdicts"],
+                   "rough_surface_solved_law": rough["solved"]["verdicts"],
+                   "law_comparison": rough["law_comparison"]}
 
 
 def _single(out, args, first_step, total):
@@ -248,15 +250,16 @@ def verdict_counts(summary):
     notes'), then the claims that fail, by name."""
     lines, failing = [], []
     for key, name in (("checks", "closed-form checks"), ("single_asperity", "single-asperity "
-                      "claims"), ("rough_surface", "rough-surface claims")):
+                      "claims"), ("rough_surface", "rough-surface claims"),
+                      ("rough_surface_solved_law", "rough-surface claims with the solved law")):
         if key in summary:
             verdicts = [v.get("verdict") or ("holds" if v["holds"] else "fails")
                         for v in summary[key]]
             lines.append(f"{name}: {counted(verdicts.count('holds'), 'holds', 'hold')}, "
                          f"{counted(verdicts.count('fails'), 'fails', 'fail')}, "
                          f"{counted(verdicts.count('note'), 'note', 'notes')}")
-            failing += [v["claim"] for v, verdict in zip(summary[key], verdicts)
-                        if verdict == "fails"]
+            failing += [v["claim"] + (" (with the solved law)" if key.endswith("law") else "")
+                        for v, verdict in zip(summary[key], verdicts) if verdict == "fails"]
     return lines, failing
 
 

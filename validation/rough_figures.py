@@ -9,14 +9,19 @@ from gw.surface import RoughSurface
 from gw.tables import solved_law
 
 
-def plot(data, spread):
-    """Figs. 9-13 and the ξ collapse as one 3×3 figure; returns the matplotlib Figure."""
+def plot(data, spread, solved=None):
+    """Figs. 9-13 and the ξ collapse as one 3×3 figure, with the paper's law (solid) and, where
+    `solved` (the same series with the solved law) has them, the solved law (dashed, same
+    colour); returns the matplotlib Figure."""
     fig = Figure(figsize=(15, 12), layout="tight")
     ax = fig.subplots(3, 3)
     d = data["fig9"]["d"]
-    for mu, c in data["fig9"]["curves"].items():
-        ax[0, 0].plot(d, c["F"], label=f"μ = {mu}")
-        ax[0, 1].plot(d, c["S"], label=f"μ = {mu}")
+    for k, (mu, c) in enumerate(data["fig9"]["curves"].items()):
+        ax[0, 0].plot(d, c["F"], color=f"C{k}", label=f"μ = {mu}")
+        ax[0, 1].plot(d, c["S"], color=f"C{k}", label=f"μ = {mu}")
+        if solved is not None:
+            ax[0, 0].plot(d, solved["fig9"]["curves"][mu]["F"], "--", color=f"C{k}")
+            ax[0, 1].plot(d, solved["fig9"]["curves"][mu]["S"], "--", color=f"C{k}")
     ax[0, 0].set(xlabel="d / σ", ylabel="F̄", title="Fig. 9a: σ = 2 nm")
     ax[0, 1].set(xlabel="d / σ", ylabel="S̄", title="Fig. 9b: σ = 2 nm", yscale="log",
                  ylim=(1e-4, None))
@@ -29,8 +34,10 @@ def plot(data, spread):
               (ax[2, 0], "fig12b", "theta", "θ", "Fig. 12b: σ [nm] =", "log"),
               (ax[2, 1], "fig13", "mu", "μ", "Fig. 13: ζ =", "log")]
     for axis, key, x, xlabel, title, scale in panels:
-        for label, values in data[key]["f_max"].items():
-            axis.plot(data[key][x], values, label=label)
+        for k, (label, values) in enumerate(data[key]["f_max"].items()):
+            axis.plot(data[key][x], values, color=f"C{k}", label=label)
+            if solved is not None and key in solved:
+                axis.plot(solved[key][x], solved[key]["f_max"][label], "--", color=f"C{k}")
         axis.set(xlabel=xlabel, ylabel="F̄max", title=title, xscale=scale)
     xi = np.asarray(spread["zeta"]) / (np.asarray(spread["mu"]) + 1.0)
     sc = ax[2, 2].scatter(xi, spread["f_max"], c=np.log10(spread["mu"]), s=8, cmap="viridis")
@@ -40,7 +47,8 @@ def plot(data, spread):
         axis.grid(alpha=0.3)
         if axis.get_legend_handles_labels()[0]:
             axis.legend(fontsize=7)
-    fig.suptitle(f"Paper's laws on a GW surface (ε = {data['eps_nm']} nm, ω = {data['omega']})")
+    fig.suptitle(f"Paper's laws on a GW surface (ε = {data['eps_nm']} nm, ω = {data['omega']})"
+                 + ("; dashed: the solved law (table of BEM solves, μ ≤ 50)" if solved else ""))
     return fig
 
 
