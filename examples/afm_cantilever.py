@@ -26,9 +26,7 @@ import os
 import warnings
 from pathlib import Path
 
-from fem_asperity import Scales, Solid, solve_curve
-from fem_asperity.plumbing.errors import DerjaguinWarning
-from fem_asperity.solver.output import write_all
+from fem_asperity import DerjaguinWarning, Scales, Solid, solve_curve
 
 FAST = os.environ.get("EXAMPLES_FAST") == "1"
 OUT = Path(os.environ.get("EXAMPLES_OUT", "out/examples/afm_cantilever"))
@@ -60,11 +58,11 @@ for name, result in (("rigid holder", rigid), ("cantilever", lever)):
 # retraction). Forces in nN, positions in nm.
 
 row = lever.records()
-snap_in_force = row["p_jump_before"] * scales.force
-pull_off = row["p_off"] * scales.force
-print(f"snap-in at piezo z = {row['z_jump_in'] * EPS * 1e9:.3f} nm, force "
-      f"{snap_in_force * 1e9:.3f} nN (deflection {-snap_in_force / K * 1e9:.3f} nm)")
-print(f"snap-out at piezo z = {row['z_jump_out'] * EPS * 1e9:.3f} nm; pull-off force "
+si = scales.to_si(row)  # the events in N and m
+pull_off = si["p_off"]
+print(f"snap-in at piezo z = {si['z_jump_in'] * 1e9:.3f} nm, force "
+      f"{si['p_jump_before'] * 1e9:.3f} nN (deflection {-si['p_jump_before'] / K * 1e9:.3f} nm)")
+print(f"snap-out at piezo z = {si['z_jump_out'] * 1e9:.3f} nm; pull-off force "
       f"{pull_off * 1e9:.3f} nN = {row['p_off']:.4f} × 2πRΔγ (Bradley: −1, JKR: −0.75)")
 estimate = lever.relative_error_estimate or {}
 print(f"relative error estimate of the pull-off force: {estimate.get('p_off', float('nan')):.2g}")
@@ -89,13 +87,15 @@ film = solve_curve(silicon.mu, method="fem", accuracy=ACCURACY, radius_ratio=R /
                    solid=coating, spring_constant=k_bar)
 print(f"film on silicon ({coating.description()}, μ_silicon = {silicon.mu:.3g}): status "
       f"{film.status}; {film.message}")
-print(f"pull-off {film.events.p_off * scales.force * 1e9:.3f} nN against {pull_off * 1e9:.3f} "
-      f"nN on bulk polymer; snap-in from piezo z = {film.z_jumps['z_jump_in'] * EPS * 1e9:.3f} "
-      f"nm against {row['z_jump_in'] * EPS * 1e9:.3f} nm")
+film_si = scales.to_si(film.records())  # the polymer's force scale: same R, Δγ and ε
+print(f"pull-off {film_si['p_off'] * 1e9:.3f} nN against {pull_off * 1e9:.3f} nN on bulk "
+      f"polymer; snap-in from piezo z = {film_si['z_jump_in'] * 1e9:.3f} nm against "
+      f"{si['z_jump_in'] * 1e9:.3f} nm")
 
 # %%
-# Files: the curves, result.json (every input, the version, the solver revision) and
-# cantilever.png, the deflection against the piezo position as the instrument records it.
+# Files: the curves, result.json (every input, the version, the solver revision), paths_si.csv
+# (each point's force in N, the piezo position and the deflection in m) and cantilever.png, the
+# deflection against the piezo position as the instrument records it.
 
-written = write_all(lever, OUT)
+written = lever.write(OUT, scales)
 print("wrote " + ", ".join(p.name for p in written) + f" to {OUT}/")

@@ -14,7 +14,6 @@ from .closed_forms.physical_arguments import (
     add_physical_arguments,
     physical_given,
     physical_scales,
-    scale_record,
 )
 from .closed_forms.scales import si_unit
 from .plumbing.checks import in_range, positive
@@ -212,12 +211,9 @@ def _curve(args, parser):
     bar.close()
     if result.status != "ok":
         print(f"warning: {result.message}", file=sys.stderr)
-    if args.out is not None:
+    row = result.records(scales)
+    if args.out is not None:  # the same record as on stdout, the paths in SI beside
         write_all(result, args.out, scales=scales)
-    row = result.records()
-    if scales is not None:
-        row["si"] = {**scales.to_si(row), "error_estimate": scales.to_si(
-            row["error_estimate"] or {}), "scales": scale_record(scales)}
     if args.json:
         dump_json(row)
     else:

@@ -595,3 +595,74 @@ def test_an_import_a_ctrl_c_cut_short_counts_as_interrupted_and_a_second_one_is_
     finally:
         assert interrupt.released()
     assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+def test_curve_out_with_si_inputs_keeps_the_si_record_and_the_paths_in_si(tmp_path):
+    """An AFM tip on a 0.5 N/m cantilever (μ ≈ 0.77): result.json holds the same record as
+    --json, with E*, Δγ, ε, R and K; paths_si.csv gives each point's force in N, its
+    separations in m, the piezo position (δ̄o − P̄/k̄)ε and the deflection −P̄ε/k̄ (the AFM
+    user computed these by hand); the figure gains nm and nN axes."""
+    import csv
+
+    E, dgamma, eps, R, K = 2e9, 0.05, 3e-10, 2e-8, 0.5
+    out = tmp_path / "afm"
+    done = cli("fem_asperity", "curve", "--E-star", str(E), "--dgamma", str(dgamma), "--eps",
+               str(eps), "--R", str(R), "--method", "bem", "--accuracy", "draft",
+               "--no-error-estimate", "--spring-constant", str(K), "--json", "--out", str(out))
+    assert done.returncode == 0, done.stderr
+    printed, saved = json.loads(done.stdout), json.loads((out / "result.json").read_text())
+    assert saved == printed
+    scales = saved["si"]["scales"]
+    assert (scales["E_star"], scales["dgamma"], scales["eps"], scales["R"]) == (E, dgamma, eps, R)
+    assert saved["si"]["spring_constant"] == pytest.approx(K, rel=1e-12)
+    force, k_bar = 2 * np.pi * R * dgamma, K * eps / (2 * np.pi * R * dgamma)
+    with open(out / "paths_si.csv") as f:
+        rows = list(csv.DictReader(f))
+    assert {r["path"] for r in rows} == {"approach", "retraction"}
+    for r in rows[::17]:
+        p, delta = float(r["p"]), float(r["delta_o"])
+        assert float(r["force_N"]) == pytest.approx(p * force, rel=1e-9)
+        assert float(r["piezo_m"]) == pytest.approx((delta - p / k_bar) * eps, rel=1e-9,
+                                                    abs=1e-21)
+        assert float(r["deflection_m"]) == pytest.approx(-p / k_bar * eps, rel=1e-9, abs=1e-21)
+    pull_off = min(float(r["force_N"]) for r in rows if r["path"] == "retraction")
+    assert pull_off == pytest.approx(saved["si"]["p_off"], rel=1e-9)
+
+
+def test_the_curve_figure_draws_jumps_as_jumps_and_marks_the_forces():
+    """A line per branch (the jump dotted between them, not drawn as equilibrium states), P̄max
+    and the pull-off marked, and with physical inputs a second pair of axes in nm and nN."""
+    from fem_asperity import Scales, solve_curve
+    from fem_asperity.solver.output import curve_figure
+
+    result = solve_curve(1.0, method="bem", accuracy="draft", error_estimate=False)
+    scales = Scales.for_mu(1.0, eps=3e-10, R=1e-6, E_star=1e9)
+    ax = curve_figure(result, scales).axes[0]
+    dotted = [line for line in ax.get_lines() if line.get_linestyle() == ":"]
+    jumps = (result.events.jump_in, result.events.jump_out)
+    assert len(dotted) == 2  # the jump-in and the jump-out
+    for line, jump in zip(dotted, jumps):
+        assert np.ptp(line.get_xdata()) < 1e-9 * abs(jump.delta) + 1e-12
+        assert line.get_xdata()[0] == pytest.approx(jump.delta)
+    solid = [line for line in ax.get_lines() if line.get_linestyle() == "-"]
+    assert len(solid) == 4  # two branches on each path
+    labels = [line.get_label() for line in ax.get_lines()]
+    assert any(label.startswith("P̄max") for label in labels)
+    assert any(label.startswith("pull-off") for label in labels)
+    second = ax.child_axes  # the secondary axes live on the first
+    assert {a.get_xlabel() for a in second} | {a.get_ylabel() for a in second} >= {
+        "δo [nm]", "P [nN]"}
+    assert curve_figure(result).axes[0].child_axes == []  # no physical inputs: none
+
+
+def test_a_curve_as_a_dataframe_in_si():
+    from fem_asperity import Scales, solve_curve
+
+    result = solve_curve(0.3, method="bem", accuracy="draft", error_estimate=False)
+    scales = Scales.for_mu(0.3, eps=3e-10, R=1e-6, E_star=1e9)
+    frame = result.to_dataframe(scales)
+    assert len(frame) == len(result.approach) + len(result.retraction)
+    np.testing.assert_allclose(frame["force_N"], frame["p"] * scales.force, rtol=1e-12)
+    np.testing.assert_allclose(frame["a_c_m"], frame["a_c"] * scales.length_r, rtol=1e-12)
+    assert "piezo_m" not in frame  # displacement control: no cantilever
+    assert "force_N" not in result.to_dataframe()

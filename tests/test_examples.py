@@ -167,6 +167,9 @@ def test_afm_cantilever(tmp_path, monkeypatch):
     saved = json.loads((tmp_path / "result.json").read_text())
     assert saved["inputs"]["control"] == "load line"
     assert saved["z_jump_in"] == ns["row"]["z_jump_in"]
+    assert saved["si"]["scales"]["R"] == R  # the record on disk is in SI too
+    header = (tmp_path / "paths_si.csv").read_text().splitlines()[0].split(",")
+    assert {"force_N", "piezo_m", "deflection_m"} <= set(header)
     assert_png(tmp_path / "cantilever.png")
     # The film on silicon: meshed for the film's own μ, and a thin film on a stiff substrate
     # pulls off between the bulk polymer and Bradley's rigid limit, −1 (silicon alone: μ = 0.04)

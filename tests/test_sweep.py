@@ -148,7 +148,7 @@ def test_files_have_every_event_with_its_estimate_and_the_curves_in_long_format(
     with open(paths[1]) as f:
         curves = list(csv.DictReader(f))
     assert set(curves[0]) == {"mu", "path", "point", "delta_o", "x_o", "p", "area", "a_c",
-                              "stable"}
+                              "stable", "branch"}  # branch: a jump lies between two numbers
     assert {r["path"] for r in curves} == {"approach", "retraction"}
     approach = [r for r in curves if r["mu"] == "1" and r["path"] == "approach"]
     assert len(approach) == len(result.rows[1].curve.approach)

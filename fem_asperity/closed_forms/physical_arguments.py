@@ -76,6 +76,8 @@ def _one(row, error, command):
 
 
 def scale_record(scales):
-    """The scales of a physical input, SI, with μ and R/ε (for JSON and tables)."""
+    """The scales of a physical input, SI, with its inputs E* [Pa], Δγ [J/m²], ε and R [m], μ
+    and R/ε (for JSON and tables)."""
     return {"mu": scales.mu, "R_over_eps": scales.R / scales.eps, "E_star": scales.E_star,
+            "dgamma": scales.dgamma, "eps": scales.eps, "R": scales.R,
             "force": scales.force, "length_z": scales.length_z, "length_r": scales.length_r}

@@ -12,40 +12,68 @@ from pathlib import Path
 import numpy as np
 
 from ..closed_forms.lj import scaled_traction
-from ..plumbing.files import atomic_path, save_figure, staged_folder
-from .result import write_curves
+from ..plumbing.files import atomic_path, save_figure, staged_folder, write_atomic
+from .result import PATH_COLUMNS, SI_PATH_COLUMNS, csv_text, write_curves
 
 #: Who writes a curve's output folder, as its record says (`plumbing.files.staged_folder`).
 OWNER = "python -m fem_asperity curve"
 
 
-def plot_curve(result, path):
-    """Two panels, P̄ and ā_c vs δ̄o: equilibrium curve (unstable dashed), approach, retraction."""
+def plot_curve(result, path, scales=None):
+    """`curve_figure` saved at `path` (PNG)."""
+    return save_figure(curve_figure(result, scales), path)
+
+
+def _branches(ax, curve, column, colour, width, label):
+    """`curve`'s `column` against δ̄o, a line per branch, the jumps between them dotted."""
+    values = getattr(curve, column)
+    starts = np.flatnonzero(np.diff(curve.branch)) + 1
+    for k, piece in enumerate(np.split(np.arange(len(curve)), starts)):
+        ax.plot(curve.delta[piece], values[piece], "-", color=colour, lw=width,
+                label=label if k == 0 else None)
+    for i in starts:  # a jump: from the last state of a branch to the first of the next
+        ax.plot(curve.delta[[i - 1, i]], values[[i - 1, i]], ":", color=colour, lw=width)
+
+
+def curve_figure(result, scales=None):
+    """Two panels, P̄ and ā_c vs δ̄o: the equilibrium curve (unstable dashed), the approach and
+    the retraction, a line per branch and their jumps dotted, P̄max (approach) and the pull-off
+    P̄off (retraction) marked. With `scales` (physical inputs) a second pair of axes in nm and
+    nN."""
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(10, 4), layout="constrained")
+    fig = Figure(figsize=(10, 4.5), layout="constrained")
     axes = fig.subplots(1, 2)
-    eq = result.equilibrium
+    eq, ev = result.equilibrium, result.events
     for ax, column, label in zip(axes, ("p", "a_c"), ("P̄ = P/(2πRΔγ)", "ā_c = a_c/√(εR)")):
         values = getattr(eq, column)
         if not eq.stable.all():
             ax.plot(eq.delta, np.where(eq.stable, np.nan, values), "k--", lw=1, label="unstable")
-        ax.plot(result.approach.delta, getattr(result.approach, column), "-", color="tab:blue",
-                lw=1.5, label="approach")
-        ax.plot(result.retraction.delta, getattr(result.retraction, column), "-",
-                color="tab:red", lw=1, label="retraction")
+        _branches(ax, result.approach, column, "tab:blue", 1.5, "approach")
+        _branches(ax, result.retraction, column, "tab:red", 1.0, "retraction")
         ax.set_xlabel("δ̄o = δo/ε")
         ax.set_ylabel(label)
         ax.set_xlim(min(eq.delta), min(max(eq.delta), 10.0))
         ax.grid(alpha=0.3)
+    axes[0].plot([ev.delta_oc], [ev.p_max], "o", mfc="none", color="tab:blue",
+                 label=f"P̄max = {ev.p_max:.4g}")
+    axes[0].plot([ev.delta_off], [ev.p_off], "s", mfc="none", color="tab:red",
+                 label=f"pull-off P̄off = {ev.p_off:.4g}")
     axes[0].set_ylim(-1.1, max(0.2, min(1.2, float(np.max(eq.p)))))
-    axes[0].legend()
+    axes[0].legend(fontsize=8)
+    if scales is not None:
+        nm, force_nn, radius_nm = scales.length_z * 1e9, scales.force * 1e9, scales.length_r * 1e9
+        for ax, unit, scale in ((axes[0], "P [nN]", force_nn), (axes[1], "a_c [nm]", radius_nm)):
+            ax.secondary_xaxis("top", functions=(lambda d: d * nm, lambda d: d / nm)).set_xlabel(
+                "δo [nm]")
+            ax.secondary_yaxis("right", functions=(lambda v, s=scale: v * s,
+                                                   lambda v, s=scale: v / s)).set_ylabel(unit)
     profile = "" if result.radius_ratio is None else f", sphere R/ε = {result.radius_ratio:g}"
     control = ("displacement control" if result.spring_constant is None
                else f"load-line control (k̄ = {result.spring_constant:g})")
     fig.suptitle(f"{result.method.upper()}, μ = {result.mu:g}, accuracy '{result.accuracy}', "
                  f"{result.solid.description()}{profile}, {control}")
-    return save_figure(fig, path)
+    return fig
 
 
 def plot_cantilever(result, path):
@@ -191,14 +219,20 @@ def _render(grid, path, title, window, stress_unit, length_unit):
 
 def write_all(result, folder, scales=None):
     """Curves, the curve figure and, for the FE (the BEM has no bulk mesh), the fields at P̄max
-    (approach) and P̄off (retraction), the fields in SI with `scales` (physical inputs). All or
+    (approach) and P̄off (retraction). With `scales` (physical inputs): result.json's SI block
+    (`result.records(scales)`, as the command line prints it), paths_si.csv (both paths in SI,
+    `result.path_rows`), the figure's second axes in nm and nN, the fields in SI. All or
     nothing: the files are written into a staging folder and moved into `folder` only when
-    every one of them is complete. `folder` is new, empty or an earlier curve's (`OWNER`); files
-    in it that a curve did not write stay, and a folder holding other files is refused."""
+    every one of them is complete. `folder` is new, empty or an earlier curve's (`OWNER`);
+    files in it that a curve did not write stay, and a folder holding other files is
+    refused."""
     folder = Path(folder)
     with staged_folder(folder, owner=OWNER) as stage:
-        names = [p.name for p in write_curves(result, stage)]
-        names.append(plot_curve(result, stage / "curve.png").name)
+        names = [p.name for p in write_curves(result, stage, scales)]
+        if scales is not None:
+            names.append(write_atomic(stage / "paths_si.csv", csv_text(
+                result.path_rows(scales), [*PATH_COLUMNS, *SI_PATH_COLUMNS])).name)
+        names.append(plot_curve(result, stage / "curve.png", scales).name)
         if result.spring_constant is not None:
             names.append(plot_cantilever(result, stage / "cantilever.png").name)
         if result.method == "fem":

@@ -1,10 +1,13 @@
 """What a solved curve is: `CurveResult` (curves, events, error estimate, cost, status) and its
 own files (`write_curves`: the CSV curves and result.json, the format the store reads back)."""
 
+import csv
+import io
 import json
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
+from ..closed_forms.physical_arguments import scale_record
 from ..path.curve import Curve, Events
 from ..plumbing.files import write_atomic
 from ..plumbing.revision import solver_revision
@@ -147,9 +150,44 @@ class CurveResult:
                 "spring_constant": self.spring_constant,
                 "p_end": self.p_end, "unstable_branch": self.unstable_branch}
 
-    def records(self):
+    def write(self, folder, scales=None):
+        """The curve's files into `folder` (`solver.output.write_all`: CSVs, result.json,
+        curve.png, cantilever.png under load-line control, FE fields; with `scales`, the
+        `Scales` of physical inputs, paths_si.csv and SI axes); returns their paths."""
+        from .output import write_all
+
+        return write_all(self, folder, scales=scales)
+
+    def to_dataframe(self, scales=None):
+        """The approach and retraction as one pandas DataFrame, a row per point (`path_rows`:
+        dimensionless columns, and SI ones with `scales`, the `Scales` of physical inputs;
+        pandas is the optional extra `tables`)."""
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ImportError("to_dataframe needs pandas: pip install pandas") from None
+        return pd.DataFrame(self.path_rows(scales))
+
+    def path_rows(self, scales=None):
+        """`path_rows` of the approach, then of the retraction."""
+        return [row for name in ("approach", "retraction")
+                for row in path_rows(getattr(self, name), name, scales, self.spring_constant)]
+
+    def records(self, scales=None):
         """JSON-ready dict: the command line's keys (dimensionless, tensile forces negative),
-        then the inputs, the package version and the solver's revision (`plumbing.revision`)."""
+        then the inputs, the package version and the solver's revision (`plumbing.revision`);
+        with `scales` (the `Scales` of physical inputs) an `si` block: the events and their
+        estimates in N and m, the scales with E*, Δγ, ε and R, and the spring's K [N/m]."""
+        row = self._records()
+        if scales is not None:
+            row["si"] = {**scales.to_si(row),
+                         "error_estimate": scales.to_si(row["error_estimate"] or {}),
+                         "scales": scale_record(scales)}
+            if self.spring_constant is not None:
+                row["si"]["spring_constant"] = self.spring_constant * scales.force / scales.eps
+        return row
+
+    def _records(self):
         return {
             "mu": self.mu,
             "method": self.method,
@@ -177,16 +215,62 @@ class CurveResult:
         }
 
 
-def curve_files(result):
+#: The columns of `path_rows` with their units: dimensionless (the paper's scales), then SI ones
+#: with physical inputs (the last two under load-line control only).
+PATH_COLUMNS = {"path": "approach | retraction", "point": "index along the path",
+                "delta_o": "eps", "x_o": "eps", "p": "2 pi R dgamma (< 0 tensile)",
+                "area": "eps R", "a_c": "sqrt(eps R)", "stable": "1 | 0",
+                "branch": "segment between jumps"}
+SI_PATH_COLUMNS = {"delta_o_m": "m", "x_o_m": "m", "force_N": "N (< 0 tensile)",
+                   "area_m2": "m^2", "a_c_m": "m",
+                   "piezo_m": "m (the spring's far end: delta_o - P/K)",
+                   "deflection_m": "m (-P/K, > 0 bent toward the surface)"}
+
+
+def path_rows(curve, name, scales=None, spring_constant=None):
+    """The points of path `curve` (called `name`) as dicts with PATH_COLUMNS and, with `scales`
+    (the `Scales` of physical inputs), SI_PATH_COLUMNS: separations in m, force in N, area in
+    m², contact radius in m and, under load-line control (`spring_constant` k̄), the piezo
+    position (δ̄o − P̄/k̄)ε and the cantilever's deflection −P̄ε/k̄."""
+    rows = []
+    for i in range(len(curve)):
+        row = {"path": name, "point": i, "delta_o": float(curve.delta[i]),
+               "x_o": float(curve.x[i]), "p": float(curve.p[i]),
+               "area": float(curve.area[i]), "a_c": float(curve.a_c[i]),
+               "stable": int(curve.stable[i]), "branch": int(curve.branch[i])}
+        if scales is not None:
+            row |= {"delta_o_m": row["delta_o"] * scales.length_z,
+                    "x_o_m": row["x_o"] * scales.length_z, "force_N": row["p"] * scales.force,
+                    "area_m2": row["area"] * scales.area, "a_c_m": row["a_c"] * scales.length_r}
+            if spring_constant is not None:
+                deflection = -row["p"] / spring_constant
+                row |= {"piezo_m": (row["delta_o"] + deflection) * scales.length_z,
+                        "deflection_m": deflection * scales.length_z}
+        rows.append(row)
+    return rows
+
+
+def curve_files(result, scales=None):
     """{file name: text} of a result's own files: approach.csv, retraction.csv,
-    equilibrium.csv, then result.json."""
+    equilibrium.csv, then result.json (`result.records(scales)`)."""
     files = {f"{name}.csv": getattr(result, name).csv()
              for name in ("approach", "retraction", "equilibrium")}
-    files["result.json"] = json.dumps(result.records(), indent=2, allow_nan=False) + "\n"
+    files["result.json"] = json.dumps(result.records(scales), indent=2,
+                                      allow_nan=False) + "\n"
     return files
 
 
-def write_curves(result, folder):
+def write_curves(result, folder, scales=None):
     """`curve_files` under `folder`, result.json last (a folder holding it is complete)."""
     folder = Path(folder)
-    return [write_atomic(folder / name, text) for name, text in curve_files(result).items()]
+    return [write_atomic(folder / name, text)
+            for name, text in curve_files(result, scales).items()]
+
+
+def csv_text(rows, columns):
+    """CSV text of dict rows with a header of `columns` (missing values empty)."""
+    out = io.StringIO()
+    writer = csv.DictWriter(out, columns, lineterminator="\n", extrasaction="ignore")
+    writer.writeheader()
+    writer.writerows(rows)
+    return out.getvalue()

@@ -37,6 +37,7 @@ from ..plumbing.errors import InputError
 from ..plumbing.files import staged_folder, writable_folder, write_atomic
 from ..plumbing.version import __version__
 from ..solids.fe import Solid
+from ..solver.result import PATH_COLUMNS, path_rows
 from ..solver.solve import solvable_mu, solve_curve
 from .store import (
     COST_KEYS,
@@ -55,9 +56,7 @@ from .store import (
 #: Who writes a sweep's output folder, as its record says (`plumbing.files.staged_folder`).
 OWNER = "python -m fem_asperity sweep"
 #: Columns of curves.csv with their units (dimensionless, the paper's scales).
-CURVE_COLUMNS = {"mu": "-", "path": "approach | retraction", "point": "index along the path",
-                 "delta_o": "eps", "x_o": "eps", "p": "2 pi R dgamma (< 0 tensile)",
-                 "area": "eps R", "a_c": "sqrt(eps R)", "stable": "1 | 0"}
+CURVE_COLUMNS = {"mu": "-", **PATH_COLUMNS}
 #: Units of the events (events.csv names each estimate `<event>_err` and `<event>_rel_err`).
 EVENT_UNITS = {"p_max": "2 pi R dgamma", "delta_oc": "eps", "delta_o_star": "eps",
                "a_c": "sqrt(eps R)", "jump_in": "true | false", "x_oc": "eps",
@@ -186,10 +185,7 @@ class Sweep:
 
 
 def _long(mu, name, curve: Curve):
-    return [{"mu": mu, "path": name, "point": i, "delta_o": float(curve.delta[i]),
-             "x_o": float(curve.x[i]), "p": float(curve.p[i]), "area": float(curve.area[i]),
-             "a_c": float(curve.a_c[i]), "stable": int(curve.stable[i])}
-            for i in range(len(curve))]
+    return [{"mu": mu} | row for row in path_rows(curve, name)]
 
 
 def _csv(rows, columns=None):
