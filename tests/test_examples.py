@@ -104,9 +104,12 @@ def test_single_curve(tmp_path, monkeypatch):
 
 
 def test_mu_sweep(tmp_path, monkeypatch):
-    run_example("mu_sweep", tmp_path, monkeypatch)
-    columns, rows = read_csv(tmp_path / "mu_sweep.csv")
-    assert {"mu", "p_off", "p_off_error", "jump_in", "paper_p_max", "paper_jump_in",
+    monkeypatch.setenv("ADHESION_CACHE", str(tmp_path / "cache"))
+    out = tmp_path / "out"
+    run_example("mu_sweep", out, monkeypatch)
+    assert {"events.csv", "curves.csv", "sweep.json"} <= {p.name for p in (out / "sweep").iterdir()}
+    columns, rows = read_csv(out / "mu_sweep.csv")
+    assert {"mu", "p_off", "p_off_err", "jump_in", "paper_p_max", "paper_jump_in",
             "dmt_pull_off", "jkr_pull_off", "md_pull_off"} <= set(columns)
     mu = np.array([float(r["mu"]) for r in rows])
     p_off = np.array([float(r["p_off"]) for r in rows])
@@ -116,7 +119,7 @@ def test_mu_sweep(tmp_path, monkeypatch):
     assert np.all(np.diff(p_off) > 0.0)
     np.testing.assert_allclose(p_off, PAPER_LAWS.p_max(mu), rtol=0.02)
     # Jump-in only above the onset (μ ≈ 0.7): none at μ ≤ 0.5, one at μ = 2.
-    jumps = {float(r["mu"]): r["jump_in"] == "True" for r in rows}
+    jumps = {float(r["mu"]): r["jump_in"] in ("True", "true") for r in rows}
     assert not any(j for m, j in jumps.items() if m <= 0.5)
     assert jumps[2.0]
 

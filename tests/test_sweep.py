@@ -279,3 +279,24 @@ def test_the_workers_of_a_killed_sweep_end_with_it(tmp_path):
         sweeping.wait()
         for pid in filter(_alive, children):
             os.kill(pid, signal.SIGKILL)
+
+
+@pytest.mark.slow
+def test_a_script_that_sweeps_without_a_main_guard_is_told_so_instead_of_hanging(tmp_path):
+    """The workers are spawned interpreters that import the calling script; one that calls
+    sweep at its top level called it again in every worker, which waited for the store locks
+    its parent held: both hung for ever. Now the workers refuse, naming the fix, and the sweep
+    ends with those μ failed."""
+    import subprocess
+    import sys
+
+    script = tmp_path / "unguarded.py"
+    script.write_text("from fem_asperity import sweep\n"
+                      f"s = sweep([0.1, 0.2], method='bem', accuracy='draft', jobs=2, "
+                      f"error_estimate=False, cache={str(tmp_path / 'cache')!r})\n"
+                      "print([r.status for r in s.rows])\n")
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                          timeout=300, cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "['failed', 'failed']"
+    assert 'if __name__ == "__main__":' in done.stderr

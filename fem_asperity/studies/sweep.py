@@ -280,6 +280,12 @@ def _pool_jobs(jobs, todo, args, job):
     return lost
 
 
+#: Why a sweep called by a worker as it starts is refused, and what to do.
+UNGUARDED = ("sweep() was called again by a worker process as it imported your script: the "
+             "workers are fresh interpreters that import the script that started them, so put "
+             "the call under `if __name__ == \"__main__\":`")
+
+
 def _local_jobs(jobs, todo, args, job=solve_for_sweep):
     """Submit the curves to `jobs` worker processes; yield (μ, result or exception). When a
     worker dies, the pool loses every curve still running or waiting: each of those is then run
@@ -288,7 +294,8 @@ def _local_jobs(jobs, todo, args, job=solve_for_sweep):
     lost = yield from _pool_jobs(jobs, todo, args, job)
     for mu in sorted(lost):
         if (yield from _pool_jobs(1, [mu], args, job)):
-            yield mu, WorkerDied(f"the worker process solving mu = {mu:g} died")
+            yield mu, WorkerDied(f"the worker process solving mu = {mu:g} died (if its "
+                                 f"error above says so: {UNGUARDED})")
 
 
 def _check_scheduler(scheduler):
@@ -389,6 +396,10 @@ def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, estimat
     curves to solve that are done), called as each finishes. scales: the `Scales` the μ came
     from (physical inputs), for SI columns in the events.
     """
+    if getattr(multiprocessing.current_process(), "_inheriting", False):
+        # a worker importing the caller's script, which calls sweep at its top level: without
+        # this the worker waited for the store locks its parent holds, and both hung
+        raise InputError(UNGUARDED)
     # Every input is checked before the store is touched. μ as the store tells them apart
     # (`mu_key`): μ that share a folder are one μ.
     mus = sorted({check_entry(m, method, accuracy) for m in np.atleast_1d(mus)})
