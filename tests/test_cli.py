@@ -121,6 +121,10 @@ def test_validation_all_writes_its_files(tmp_path, monkeypatch, capsys):
         assert set(verdict) == {"claim", "paper", "measured", "error", "holds"}
     assert summary["not_yet_available"]  # says what is not there yet
     assert {r["claim"] for r in summary["rough_surface"]} >= {"F̄max → 0.75 as μ → ∞"}
+    assert set(summary["stage_s"]) == {"closed forms", "single asperity", "rough surface (GW)",
+                                       "rough surfaces solved whole", "layered"}
+    assert sum(summary["stage_s"].values()) == pytest.approx(summary["wall_s"], rel=1e-6)
+    assert "(closed forms " in (out / "report.md").read_text()
     # judged again with the shipped table of solved laws: its approach lands below 0.75
     solved = {r["claim"]: r["verdict"] for r in summary["rough_surface_solved_law"]}
     assert solved["F̄max → 0.75 as μ → ∞"] == "fails"

@@ -19,13 +19,14 @@ from fem_asperity.closed_forms.laws import PAPER_LAWS
 from fem_asperity.plumbing.checks import positive
 from fem_asperity.plumbing.cli import Parser, dump_json, run
 from fem_asperity.plumbing.files import output_folder, save_figure, staged_folder, write_atomic
+from fem_asperity.plumbing.provenance import git_commit
 from fem_asperity.solver.presets import PRESETS
 from fem_asperity.solver.solve import solvable_mu
 
 from .closed_forms import closed_form_checks
 from .law_figure import law_table, plot_laws
 from .layered import section as layered_section
-from .report import PENDING, counted, provenance, render
+from .report import HERE, PENDING, counted, provenance, render
 from .rough_explicit import section as explicit_section
 from .rough_surface import COMPARISON_MU
 from .rough_surface import run as run_rough_surface
@@ -180,7 +181,14 @@ def _explicit(out, args, first_step, total, command):
 
 def run_all(out, command, args):
     """Write every output into `out`; return a summary dict."""
-    start = time.perf_counter()
+    start, commit = time.perf_counter(), git_commit(HERE)  # the code this run starts from
+    stages, lap = {}, start
+
+    def timed(stage):
+        nonlocal lap
+        now = time.perf_counter()
+        stages[stage], lap = now - lap, now
+
     _step(1, "paper laws over mu (closed forms, Maugis-Dugdale)", 10)
     rows = law_table()
     table = {"method": "closed-form laws with the paper's constants (exact evaluation)",
@@ -190,21 +198,27 @@ def run_all(out, command, args):
     save_figure(plot_laws(rows), out / "paper_laws.png")
     _step(3, "closed-form checks", 10)
     checks = closed_form_checks()
+    timed("closed forms")
     single, single_summary = _single(out, args, 4, 10)
+    timed("single asperity")
     rough, rough_summary = _rough(out, args, 6, 10)
+    timed("rough surface (GW)")
     explicit, explicit_summary = _explicit(out, args, 8, 10, command)
+    timed("rough surfaces solved whole")
     layered, layered_summary = _layered(out, args, 9, 10, command)
+    timed("layered")
     files = FILES + SINGLE_FILES + ROUGH_FILES + EXPLICIT_FILES + LAYERED_FILES
     wall_s = time.perf_counter() - start
     summary = {"files": [name for name, _ in files],
                "checks": [c.as_dict() for c in checks], **single_summary, **rough_summary,
                **explicit_summary, **layered_summary,
                "not_yet_available": [{"item": i, "needs": n} for i, n in PENDING],
-               "wall_s": wall_s}
+               "wall_s": wall_s, "stage_s": stages}
     write_atomic(out / "report.md", render(checks, files, command, rough_section(rough),
                                            single_section(single), layered_section(layered),
                                            explicit_section(explicit), wall_s=wall_s,
-                                           counts=verdict_counts(summary)))
+                                           stages=stages, counts=verdict_counts(summary),
+                                           commit=commit))
     return summary
 
 

@@ -24,11 +24,13 @@ def machine_phrase():
             f"scipy {m['scipy']}")
 
 
-def provenance(command):
-    """The report's first line: how to regenerate it, and from which code, when and where."""
+def provenance(command, commit=None):
+    """The report's first line: how to regenerate it, and from which code (`commit`: as found
+    when the run started; by default now), when and where."""
     now = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    commit = commit or git_commit(HERE) or "unknown"
     return (f"Regenerate with `{command}`. Package version {fem_asperity.__version__}, "
-            f"commit {git_commit(HERE) or 'unknown'}, {now}, on {machine_phrase()}.")
+            f"commit {commit}, {now}, on {machine_phrase()}.")
 
 
 def counted(n, one, many):
@@ -50,14 +52,17 @@ def _summary(counts):
 
 
 def render(checks, files, command, rough="", single="", layered="", explicit="", wall_s=None,
-           counts=None):
-    """The report as Markdown text; `wall_s`: how long the run that wrote it took; `counts`:
-    (lines, failing claims) for the summary at the top (`validation.__main__.verdict_counts`)."""
+           counts=None, stages=None, commit=None):
+    """The report as Markdown text; `wall_s`: how long the run that wrote it took, `stages`:
+    {stage: s} of it; `counts`: (lines, failing claims) for the summary at the top
+    (`validation.__main__.verdict_counts`); `commit`: the code the run started from."""
+    parts = "" if not stages else " (" + ", ".join(f"{k} {v:.0f} s"
+                                                   for k, v in stages.items()) + ")"
     took = [] if wall_s is None else [
-        "", f"This run took {wall_s:.0f} s (curves not in the store were solved; a second run "
-            "reads them)."]
+        "", f"This run took {wall_s:.0f} s{parts}; curves not in the store were solved, and a "
+            "second run reads them."]
     lines = [
-        provenance(command),
+        provenance(command, commit),
         *took,
         "",
         "# Verification report: Song & Komvopoulos, adhesive contact of an elastic half-space "
