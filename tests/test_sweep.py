@@ -300,3 +300,26 @@ def test_a_script_that_sweeps_without_a_main_guard_is_told_so_instead_of_hanging
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip() == "['failed', 'failed']"
     assert 'if __name__ == "__main__":' in done.stderr
+
+
+def test_a_ctrl_c_ends_the_workers_instead_of_waiting_for_their_curves():
+    """Interrupted while two workers each run a minute-long job, the pool stops them and the
+    interrupt reaches the caller at once (it used to wait for the jobs: up to 83 s)."""
+    import signal
+    import time
+
+    from fem_asperity.studies.sweep import _pool_jobs
+
+    def interrupt(*_):
+        raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGALRM, interrupt)
+    start = time.perf_counter()
+    try:
+        signal.alarm(5)  # the workers have started by then
+        with pytest.raises(KeyboardInterrupt):
+            list(_pool_jobs(2, [60.0, 60.0], (), time.sleep))
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, previous)
+    assert time.perf_counter() - start < 30.0  # the jobs would have run until 60 s

@@ -273,11 +273,20 @@ def _pool_jobs(jobs, todo, args, job):
                     lost.append(futures[future])
                     continue
                 yield futures[future], result
-        except BaseException:  # Ctrl-C: stop waiting; what is stored stays stored
-            for future in futures:
-                future.cancel()
+        except BaseException:  # Ctrl-C: stop now; what is stored stays stored
+            _stop(pool)
             raise
     return lost
+
+
+def _stop(pool):
+    """Cancel what waits in `pool` and end its workers: leaving the pool otherwise waits for
+    the curves being solved (a Ctrl-C took up to 83 s to act). The workers only solve; this
+    process stores, so nothing is left half-written. (`_processes`: the executor's own
+    record of its workers; Python 3.14's terminate_workers does the same.)"""
+    pool.shutdown(wait=False, cancel_futures=True)
+    for process in list((pool._processes or {}).values()):
+        process.terminate()
 
 
 #: Why a sweep called by a worker as it starts is refused, and what to do.
