@@ -1,19 +1,20 @@
 """The solved asperity law at any μ of the shipped table, in milliseconds: no solve.
 
-The table holds the approach paths (P̄, Ā against δ̄o, the jump-in included) of BEM `default`
-curves at log-spaced μ (the nodes, 12 per decade, and a few at the jump-in onset), and the
-errors of the table measured at μ between the nodes that were not used to build it
-(`python -m gw law-table` rebuilds it from the sweep engine; `build_table`).
+The table holds the approach and retraction paths (P̄, Ā against δ̄o, the jumps included) of
+BEM `default` curves at log-spaced μ (the nodes, 12 per decade, and a few at the jump-in
+onset), and the errors of the table measured at μ between the nodes that were not used to
+build it (`python -m gw law-table` rebuilds it from the sweep engine; `build_table`).
 
 Between the nodes, P̄ and Ā are interpolated at equal *warped* separation ξ, a piecewise-linear
 map of δ̄o through landmarks every path has, mapped to ξ = 1, 0, −1, −2, −3: FAR (where the paths
-start; beyond it ξ − 1 = δ̄o − FAR, so Bradley's tail stays in place), the jump-in (below the
-onset, where P̄ is steepest: where the fold appears), and the δ̄o where P̄ crosses LEVELS in
-contact (so that the Hertz core scales with the contact; deeper, the last segment's scale goes
-on). At a μ, each node's law (`TabulatedLaw`, with its Bradley and Hertz continuations) is read
-at the δ̄o of equal ξ and the values are combined with the Lagrange weights of STENCIL nodes in
-log μ, all on one side of the onset, as are the landmarks, which map ξ back to δ̄o. The jump
-stays a jump at ξ = 0.
+start, or farther where a jump-out lies beyond it; beyond it ξ − 1 = δ̄o − FAR, so Bradley's
+tail stays in place), the path's jump (the
+jump-in on approach, the jump-out on retraction; below the onset, where P̄ is steepest: where
+the fold appears), and the δ̄o where P̄ crosses LEVELS in contact (so that the Hertz core scales
+with the contact; deeper, the last segment's scale goes on). At a μ, each node's law
+(`TabulatedLaw`, with its Bradley and Hertz continuations) is read at the δ̄o of equal ξ and
+the values are combined with the Lagrange weights of STENCIL nodes in log μ, all on one side of
+the onset, as are the landmarks, which map ξ back to δ̄o. The jump stays a jump at ξ = 0.
 
 Units: δ̄o in ε; P̄ in 2πRΔγ (< 0 tensile); Ā in εR; F̄ in 2πRA₀Δγη.
 """
@@ -33,8 +34,12 @@ from fem_asperity.plumbing.files import write_atomic
 
 from .laws import AREA, FORCE, TabulatedLaw
 
-#: δ̄o where every solved approach starts (solver.solve's far end).
+#: δ̄o where every solved approach starts (solver.solve's far end): the far landmark.
 FAR = 40.0
+#: Above μ ≈ 22 the jump-out lies beyond FAR (δ̄o = 47.3 at μ = 28.7); the far landmark is then
+#: this factor beyond it (the landmarks must decrease). With FAR alone the retraction's P̄ was
+#: off by 0.3 there (held out); docs/law_table.md has it now.
+FAR_BEYOND_JUMP = 1.25
 #: P̄ of the landmarks in contact; every solved path reaches P̄ = 1 (solve_curve's p_end).
 LEVELS = (0.0, 0.5, 1.0)
 _XI = 1.0 - np.arange(2 + len(LEVELS), dtype=float)
@@ -80,8 +85,8 @@ def _crossing(force, level, lo, hi):
 
 @dataclass(frozen=True)
 class Node:
-    """The solved approach at one μ: its law, landmarks (δ̄o at ξ = 1, 0, −1, ...), whether it
-    jumps in, and δ̄o* (initial contact) [ε]."""
+    """A solved approach or retraction at one μ: its law, landmarks (δ̄o at ξ = 1, 0, −1, ...,
+    ξ = 0 at its jump), whether it jumps, and δ̄o* (initial contact on approach) [ε]."""
 
     mu: float
     law: TabulatedLaw
@@ -90,9 +95,10 @@ class Node:
     delta_o_star: float
 
     @classmethod
-    def from_approach(cls, mu, approach, jump, delta_o_star):
-        """From a solved approach (`Curve`), its jump-in δ̄o (None: none) and δ̄o*."""
-        law = TabulatedLaw(mu, approach, delta_o_star=delta_o_star, name="node")
+    def from_path(cls, mu, path, jump, delta_o_star):
+        """From a solved approach or retraction (`Curve`), its jump's δ̄o (None: none) and δ̄o*
+        (of the approach)."""
+        law = TabulatedLaw(mu, path, delta_o_star=delta_o_star, name="node")
         deep, _ = law.solved_range
         if jump is None:  # where the fold will appear: the steepest point on the loading side
             d = np.linspace(deep, FAR, 40001)
@@ -102,7 +108,7 @@ class Node:
             mark = float(d[loading][np.argmax(slope[loading])])
         else:
             mark = float(jump)
-        marks = [FAR, mark]
+        marks = [max(FAR, FAR_BEYOND_JUMP * mark), mark]
         for level in LEVELS:
             marks.append(_crossing(law.force, level, deep, marks[-1] - 1e-9))
         return cls(float(mu), law, tuple(marks), jump is not None, float(delta_o_star))
@@ -111,10 +117,11 @@ class Node:
 def _around(measured):
     """The largest of each error in the held-out measurements `measured` (`TableLaw.error`)."""
     jumps = [m["jump"] for m in measured if m["jump"] is not None]
-    return {"held_out": [m["held_out"] for m in measured],
-            "force": max(m["force"] for m in measured),
-            "jump": max(jumps) if jumps else None,
-            "f_max": max(abs(x) for m in measured for x in m["f_max"] if x is not None)}
+    out = {"held_out": [m["held_out"] for m in measured],
+           "force": max(m["force"] for m in measured), "jump": max(jumps) if jumps else None}
+    if all("f_max" in m for m in measured):  # the approach's: F̄max on GW surfaces
+        out["f_max"] = max(abs(x) for m in measured for x in m["f_max"] if x is not None)
+    return out
 
 
 def _lagrange(x, xs):
@@ -166,8 +173,9 @@ class TableLaw:
         return finite_result(self._blend(delta, "area"), AREA)
 
     @property
-    def delta_jump_in(self):
-        """δ̄o of the jump-in [ε] (None below the onset)."""
+    def delta_jump(self):
+        """δ̄o of the path's jump [ε] (the jump-in on approach, the jump-out on retraction;
+        None below the onset)."""
         return float(self.landmarks[1]) if self.jumps else None
 
     @property
@@ -178,24 +186,28 @@ class TableLaw:
 
 @dataclass(frozen=True)
 class Entry:
-    """A node as stored: μ, its solved approach (`Curve`), its jump-in δ̄o (None: none) and δ̄o*."""
+    """A node as stored: μ, its solved approach and retraction (`Curve`), the δ̄o of their jumps
+    (None: none) and δ̄o*."""
 
     mu: float
     approach: Curve
-    jump: float | None
+    jump_in: float | None
+    retraction: Curve
+    jump_out: float | None
     delta_o_star: float
 
 
 class LawTable:
-    """The nodes (`Entry`, increasing μ; each made a `Node` when first combined), the errors
-    measured at the held-out μ (one dict per interval between nodes, as `TableLaw.error`; the
-    held-out μ lies in it) and the record of how the table was made (solver revision, method,
-    accuracy, command, date)."""
+    """The nodes (`Entry`, increasing μ; each path made a `Node` when first combined), the
+    errors measured at the held-out μ (one dict per interval between nodes, as
+    `TableLaw.error`, the retraction's under 'retraction'; the held-out μ lies in the interval)
+    and the record of how the table was made (solver revision, method, accuracy, command,
+    date)."""
 
     def __init__(self, entries, errors, record):
         self.entries, self.errors, self.record = tuple(entries), tuple(errors), dict(record)
         self.mus = np.array([e.mu for e in self.entries])
-        jumps = np.array([e.jump is not None for e in self.entries])
+        jumps = np.array([e.jump_in is not None for e in self.entries])
         if jumps.any() and not jumps[np.argmax(jumps):].all():
             raise InputError("a table node below the jump-in onset jumps in, or one above "
                              "does not")
@@ -206,12 +218,13 @@ class LawTable:
     def mu_range(self):
         return float(self.mus[0]), float(self.mus[-1])
 
-    def node(self, k):
-        """The `Node` of entry k."""
-        if k not in self._nodes:
+    def node(self, k, path="approach"):
+        """The `Node` of entry k's `path` ('approach' or 'retraction')."""
+        if (k, path) not in self._nodes:
             e = self.entries[k]
-            self._nodes[k] = Node.from_approach(e.mu, e.approach, e.jump, e.delta_o_star)
-        return self._nodes[k]
+            jump = e.jump_in if path == "approach" else e.jump_out
+            self._nodes[k, path] = Node.from_path(e.mu, getattr(e, path), jump, e.delta_o_star)
+        return self._nodes[k, path]
 
     def _stencil(self, mu):
         """(indices of the nodes combined at mu, index of its interval). The nodes are those on
@@ -230,14 +243,18 @@ class LawTable:
                               why="the table's range; above it JKR's closed forms answer "
                                   "(python -m fem_asperity laws)"))
 
-    def law(self, mu):
-        """`TableLaw` at mu (within `mu_range`; `InputError` outside)."""
+    def law(self, mu, path="approach"):
+        """`TableLaw` of `path` ('approach', the GW integrals' law, or 'retraction') at mu
+        (within `mu_range`; `InputError` outside)."""
         mu = self.check_mu(mu)
         nodes, i = self._stencil(mu)
         weights = _lagrange(np.log(mu), np.log(self.mus[nodes]))
-        error = _around(self.errors[max(i - 1, 0):i + 2]) if self.errors else {}
-        return TableLaw(mu, [self.node(k) for k in nodes], weights, error,
-                        "table of solved laws, nodes mu = "
+        around = self.errors[max(i - 1, 0):i + 2]
+        if path == "retraction":
+            around = [e["retraction"] | {"held_out": e["held_out"]} for e in around]
+        return TableLaw(mu, [self.node(k, path) for k in nodes], weights,
+                        _around(around) if around else {},
+                        f"table of solved laws ({path}), nodes mu = "
                         + ", ".join(f"{m:.4g}" for m in self.mus[nodes]))
 
 
@@ -248,11 +265,14 @@ def save_table(path, entries, errors, record):
     written whole or not at all)."""
     arrays = {"mu": np.array([e.mu for e in entries]),
               "delta_o_star": np.array([e.delta_o_star for e in entries]),
-              "jump": np.array([np.nan if e.jump is None else e.jump for e in entries]),
-              "start": np.cumsum([0] + [len(e.approach) for e in entries]),
               "meta": np.array(json.dumps({"errors": list(errors), "record": record}))}
-    for f in _FIELDS:
-        arrays[f] = np.concatenate([getattr(e.approach, f) for e in entries])
+    for name, jump in (("approach", "jump_in"), ("retraction", "jump_out")):
+        arrays[jump] = np.array([np.nan if getattr(e, jump) is None else getattr(e, jump)
+                                 for e in entries])
+        arrays[f"{name}_start"] = np.cumsum([0] + [len(getattr(e, name)) for e in entries])
+        for f in _FIELDS:
+            arrays[f"{name}_{f}"] = np.concatenate([getattr(getattr(e, name), f)
+                                                    for e in entries])
     buffer = io.BytesIO()
     np.savez_compressed(buffer, **arrays)
     write_atomic(path, buffer.getvalue())
@@ -272,14 +292,19 @@ def load_table(path=TABLE_FILE):
         raise InputError(f"no table of solved laws at {path}: `python -m gw law-table` "
                          "writes it") from None
     meta = json.loads(str(data["meta"]))
-    entries = []
-    for k, mu in enumerate(data["mu"]):
-        lo, hi = data["start"][k:k + 2]
+
+    def stored(path, k):
+        lo, hi = data[f"{path}_start"][k:k + 2]
         n = hi - lo
-        approach = Curve(data["delta"][lo:hi], np.zeros(n), data["p"][lo:hi],
-                         data["area"][lo:hi], np.zeros(n), np.ones(n, bool),
-                         data["branch"][lo:hi].astype(int))
-        jump = float(data["jump"][k])
-        entries.append(Entry(float(mu), approach, None if np.isnan(jump) else jump,
-                             float(data["delta_o_star"][k])))
+        return Curve(data[f"{path}_delta"][lo:hi], np.zeros(n), data[f"{path}_p"][lo:hi],
+                     data[f"{path}_area"][lo:hi], np.zeros(n), np.ones(n, bool),
+                     data[f"{path}_branch"][lo:hi].astype(int))
+
+    def jump(name, k):
+        value = float(data[name][k])
+        return None if np.isnan(value) else value
+
+    entries = [Entry(float(mu), stored("approach", k), jump("jump_in", k),
+                     stored("retraction", k), jump("jump_out", k),
+                     float(data["delta_o_star"][k])) for k, mu in enumerate(data["mu"])]
     return LawTable(entries, meta["errors"], meta["record"])

@@ -1,11 +1,13 @@
-"""Build the table of solved asperity laws (`law_table`) and measure its error.
+"""Build the table of solved asperity laws (`law_table`, approach and retraction) and measure
+its error.
 
 The nodes (NODES_PER_DECADE log-spaced μ from MU_LOW to MU_HIGH, with the solver's largest μ,
 and a few around the jump-in onset) and one held-out μ in every interval between them (the
 geometric mean of its ends) are solved by the sweep engine (BEM `default`, with an error
 estimate; curves already in the store are read). The table is built from the nodes alone; at
-each held-out μ its law is compared with the directly solved one: P̄ over the solved δ̄o, the
-jump-in δ̄o, and F̄max on GW surfaces at each ζ of `law_table.ZETAS`.
+each held-out μ its law is compared with the directly solved one: P̄ over the solved δ̄o and
+the jump's δ̄o on approach and on retraction, and F̄max on GW surfaces at each ζ of
+`law_table.ZETAS`.
 """
 
 from datetime import datetime, timezone
@@ -59,20 +61,31 @@ def held_out_mus(nodes):
     return [float(np.round(np.sqrt(a * b), 6)) for a, b in zip(nodes[:-1], nodes[1:])]
 
 
-def measure(table, stored):
-    """The table's error at the held-out stored curve `stored` (see `TableLaw.error`)."""
-    mu = stored.mu
-    law = table.law(mu)
-    direct = TabulatedLaw(mu, stored.approach, delta_o_star=stored.events.delta_o_star)
+def _path_error(law, curve, jump, delta_o_star):
+    """|ΔP̄| of the table's `law` against the solved path `curve` over its solved δ̄o outside
+    the two jumps, and the jump's shift (None unless both jump)."""
+    direct = TabulatedLaw(law.mu, curve, delta_o_star=delta_o_star)
     deep, far = direct.solved_range
-    d = np.unique(np.concatenate([np.linspace(deep, far, 8001), stored.approach.delta]))
-    jumps = [j for j in (law.landmarks[1] if law.jumps else None,
-                         stored.events.jump_in.delta if stored.events.jump_in else None)
-             if j is not None]
-    if jumps:  # between the two jump-ins the forces differ by the jump itself; the margin:
+    d = np.unique(np.concatenate([np.linspace(deep, far, 8001), curve.delta]))
+    jumps = [j for j in (law.delta_jump if law.jumps else None, jump) if j is not None]
+    if jumps:  # between the two jumps the forces differ by the jump itself; the margin:
         # the stored paths keep 10 significant digits, the events full precision
         margin = JUMP_DIGITS * max(jumps, key=abs)
         d = d[(d < min(jumps) - abs(margin)) | (d > max(jumps) + abs(margin))]
+    return (float(np.max(np.abs(law.force(d) - direct.force(d)))),
+            float(abs(jumps[0] - jumps[1])) if len(jumps) == 2 else None)
+
+
+def measure(table, stored):
+    """The table's error at the held-out stored curve `stored` (see `TableLaw.error`; the
+    retraction's under 'retraction')."""
+    mu, ev = stored.mu, stored.events
+    law = table.law(mu)
+    direct = TabulatedLaw(mu, stored.approach, delta_o_star=ev.delta_o_star)
+    force, jump = _path_error(law, stored.approach, ev.jump_in and ev.jump_in.delta,
+                              ev.delta_o_star)
+    back, jump_out = _path_error(table.law(mu, "retraction"), stored.retraction,
+                                 ev.jump_out and ev.jump_out.delta, ev.delta_o_star)
     f_max = []
     for zeta in ZETAS:
         surface = RoughSurface(float(zeta))
@@ -80,10 +93,8 @@ def measure(table, stored):
             f_max.append(strength(law, surface).f_max / strength(direct, surface).f_max - 1.0)
         except InputError:  # F̄max not bracketed on this surface: nothing to compare
             f_max.append(None)
-    return {"held_out": mu,
-            "force": float(np.max(np.abs(law.force(d) - direct.force(d)))),
-            "jump": float(abs(jumps[0] - jumps[1])) if len(jumps) == 2 else None,
-            "f_max": f_max}
+    return {"held_out": mu, "force": force, "jump": jump, "f_max": f_max,
+            "retraction": {"force": back, "jump": jump_out}}
 
 
 def build_table(out=TABLE_FILE, *, jobs=None, cache=None, progress=None):
@@ -111,9 +122,9 @@ def build_table(out=TABLE_FILE, *, jobs=None, cache=None, progress=None):
 
 def entry(stored):
     """The table `Entry` of a stored curve (`StoredCurve`)."""
-    jump = stored.events.jump_in
-    return Entry(stored.mu, stored.approach, None if jump is None else jump.delta,
-                 stored.events.delta_o_star)
+    ev = stored.events
+    return Entry(stored.mu, stored.approach, ev.jump_in and ev.jump_in.delta,
+                 stored.retraction, ev.jump_out and ev.jump_out.delta, ev.delta_o_star)
 
 
 def report(table):
@@ -140,15 +151,21 @@ def report(table):
         f"- largest relative F̄max error: {peak[0]:.2e} (ζ = {peak[1]:g}).",
         "",
         "Columns: |ΔP̄| the largest force difference [2πRΔγ] over the directly solved δ̄o "
-        "outside the two jump-ins; |Δδ̄o jump| the jump-in's shift [ε]; the largest relative "
-        "F̄max difference over the ζ above and the ζ where it occurs.",
+        "outside the two jumps; |Δδ̄o jump| the jump's shift [ε]; the largest relative "
+        "F̄max difference over the ζ above and the ζ where it occurs; then the retraction's "
+        "|ΔP̄| and the jump-out's shift.",
         "",
-        "| held-out μ | abs dP | abs d(delta jump) | rel. dF_max (largest) | at zeta |",
-        "|---|---|---|---|---|",
+        "| held-out μ | abs dP | abs d(delta jump-in) | rel. dF_max (largest) | at zeta | "
+        "retraction abs dP | abs d(delta jump-out) |",
+        "|---|---|---|---|---|---|---|",
     ]
+
+    def cell(value):
+        return "-" if value is None else f"{value:.1e}"
+
     for e, (rel, zeta) in zip(table.errors, worst):
-        jump = "-" if e["jump"] is None else f"{e['jump']:.1e}"
-        lines.append(f"| {e['held_out']:.6g} | {e['force']:.1e} | {jump} | "
-                     + ("-" if rel is None else f"{rel:.1e}") + " | "
-                     + ("-" if zeta is None else f"{zeta:g}") + " |")
+        back = e["retraction"]
+        lines.append(f"| {e['held_out']:.6g} | {cell(e['force'])} | {cell(e['jump'])} | "
+                     f"{cell(rel)} | {'-' if zeta is None else f'{zeta:g}'} | "
+                     f"{cell(back['force'])} | {cell(back['jump'])} |")
     return "\n".join(lines) + "\n"

@@ -150,3 +150,24 @@ def test_a_path_with_no_equilibrium_is_said_and_never_holds(caps_map, monkeypatc
     assert settled(None, force) and settled(stopped, np.append(force, 0.0))
     assert within(1.05, 1.0, 0.0) and not within(1.05, 1.0, 0.0, settled=False)
     assert within(1.14, 1.0, 0.05) and not within(1.16, 1.0, 0.05)
+
+
+def test_the_interacting_model_takes_the_tables_law_and_agrees_with_a_solved_one(caps_map):
+    """By default the answer's asperity law comes from the shipped table (no solve); its
+    interacting path gives the F_max of the law solved now (BEM, at the summits' μ) within what
+    the table's force error can move: the sum over the summits of the largest |ΔP̄| it
+    states."""
+    from gw.law_table import shipped_table
+
+    _, surface, _ = caps_map
+    dgamma = 1.2 * DGAMMA  # μ = 1.2^(2/3) = 1.13: between the table's nodes 1 and 1.21
+    adhesion = Adhesion(E_STAR, dgamma, EPS)
+    table = answer(surface, adhesion, model="interacting")
+    assert not np.isclose(shipped_table().mus, table.mu, rtol=1e-3).any()
+    solved = answer(surface, adhesion, model="interacting", law=AsperityLaw.solved(table.mu))
+    assert "table of solved laws" in table.law and "table" not in solved.law
+    law = AsperityLaw.tabulated(table.mu)
+    error = max(law.approach.error["force"], law.retraction.error["force"])
+    bound = table.statistics["summits"]["count"] * error * 2 * np.pi * table.radius * dgamma
+    found, reference = (a.models["interacting"].force_max for a in (table, solved))
+    assert abs(found - reference) <= bound

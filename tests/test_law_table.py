@@ -26,8 +26,9 @@ def test_the_warp_and_its_inverse_agree_beyond_the_landmarks():
 @pytest.mark.parametrize("mu", [0.05, 0.6, 1.5, 3.0])
 def test_the_table_matches_direct_solves_within_its_stated_error(mu, tmp_path, monkeypatch):
     """At μ that are neither nodes nor held out (0.6 just below the onset, 1.5 above it), the
-    table's P̄, jump-in and F̄max on GW surfaces (ζ 0.1-316) against a BEM `default` curve
-    solved now: each within the error the table states there."""
+    table's P̄, jump-in and F̄max on GW surfaces (ζ 0.1-316), and the retraction's P̄ and
+    jump-out, against a BEM `default` curve solved now: each within the error the table states
+    there."""
     table = shipped_table()
     assert mu not in table.mus and mu not in held_out_mus(list(table.mus))
     monkeypatch.setenv("ADHESION_CACHE", str(tmp_path))
@@ -38,6 +39,11 @@ def test_the_table_matches_direct_solves_within_its_stated_error(mu, tmp_path, m
     if found["jump"] is not None:
         assert found["jump"] <= stated["jump"]
     assert max(abs(x) for x in found["f_max"] if x is not None) <= stated["f_max"]
+    back, stated_back = found["retraction"], table.law(mu, "retraction").error
+    assert back["force"] <= stated_back["force"] and "f_max" not in stated_back
+    assert (back["jump"] is None) == (stated_back["jump"] is None) == (mu < 0.69)
+    if back["jump"] is not None:
+        assert back["jump"] <= stated_back["jump"]
 
 
 def test_the_shipped_table_says_how_it_was_made_and_its_report_is_current():

@@ -280,7 +280,7 @@ def judged_with_the_solved_law():
     spread = collapse(SOLVED_COLLAPSE_POINTS, table.law, top)
     return {"figures": data, "collapse": spread, "table": table.record,
             "verdicts": verdicts(data, spread, table.law,
-                                 lambda mu: table.law(mu).delta_jump_in, large_mu=top)}
+                                 lambda mu: table.law(mu).delta_jump, large_mu=top)}
 
 
 def run(out, *, compare_mu=COMPARISON_MU, accuracy="default", refit_method="bem", step=print):

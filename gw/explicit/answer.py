@@ -52,7 +52,8 @@ class Answer:
     None), `relative_to_whole` (name → F_max/F_max(whole) − 1), `needs` (the cheapest model
     `compare.within` the whole surface, its estimate counted, on a `compare.settled` path;
     None without the whole surface), `statistics` (the summits counted and the spectral
-    estimate), `mu` (at the summit radius), `notes` (what was left out and why)."""
+    estimate), `mu` (at the summit radius), `notes` (what was left out and why), `law`: where
+    the asperity law of GW and the interacting model came from."""
 
     models: dict
     whole: object
@@ -62,6 +63,7 @@ class Answer:
     mu: float
     radius: float
     notes: tuple
+    law: str = ""
 
     def records(self):
         """JSON-ready: the whole surface's record (si, error_estimate, paths, jumps) when it was
@@ -78,6 +80,7 @@ class Answer:
                          for name, m in self.models.items()}
         out["needs"] = self.needs
         out["statistics"] = self.statistics
+        out["law"] = self.law
         out["mu"], out["summit_radius"] = self.mu, self.radius
         out["notes"] = list(self.notes)
         return out
@@ -87,7 +90,8 @@ def answer(topography, adhesion, *, model="whole", accuracy="default", radius=No
            law=None, progress=None):
     """Every model up to `model` (MODELS) on `topography` (`Topography`, m) with `adhesion`
     (`Adhesion`) → `Answer`. `radius` (m): the summit radius, instead of the measured mean;
-    `law`: the `AsperityLaw` at its μ (solved, or read from the store, when None)."""
+    `law`: the `AsperityLaw` at its μ (by default the shipped table's, `AsperityLaw.at`: no
+    solve where the table covers μ)."""
     if model not in MODELS:
         raise InputError(f"model must be one of {', '.join(MODELS)}; got {model!r}")
     check_map(topography, adhesion)  # before any statistics or solve
@@ -100,7 +104,7 @@ def answer(topography, adhesion, *, model="whole", accuracy="default", radius=No
     if not radius > 0:
         raise InputError(f"the summits' mean curvature gives no positive radius ({radius:g} m)")
     scales = Scales(E_star=adhesion.e_star, dgamma=adhesion.dgamma, eps=adhesion.eps, R=radius)
-    law = law or AsperityLaw.solved(scales.mu)
+    law = law or AsperityLaw.at(scales.mu)
     found = summits(topography)
     unit_force = 2 * np.pi * radius * adhesion.dgamma
     area = topography.heights.size * topography.pixel**2
@@ -144,7 +148,8 @@ def answer(topography, adhesion, *, model="whole", accuracy="default", radius=No
                                 whole.error_estimate["force_max"],
                                 settled(models[name].stopped, models[name].force)))
     statistics = {"summits": vars(counted), "spectral": vars(spectral) if spectral else None}
-    return Answer(models, whole, relative, needs, statistics, scales.mu, radius, tuple(notes))
+    return Answer(models, whole, relative, needs, statistics, scales.mu, radius, tuple(notes),
+                  law.source)
 
 
 def _spectral(topography):

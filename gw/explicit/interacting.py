@@ -62,6 +62,25 @@ class AsperityLaw:
     source: str = ""
 
     @classmethod
+    def tabulated(cls, mu):
+        """From the shipped table of solved laws (`gw.law_table`, μ 0.01-50): no solve; each
+        law carries the table's measured error (`error`)."""
+        from ..law_table import shipped_table
+
+        table = shipped_table()
+        approach, retraction = table.law(mu), table.law(mu, "retraction")
+        return cls(mu, approach, retraction, approach.delta_jump, retraction.delta_jump,
+                   approach.source)
+
+    @classmethod
+    def at(cls, mu):
+        """`tabulated` where the table covers mu, else `solved` (BEM `default`)."""
+        from ..law_table import shipped_table
+
+        lo, hi = shipped_table().mu_range
+        return cls.tabulated(mu) if lo <= mu <= hi else cls.solved(mu)
+
+    @classmethod
     def solved(cls, mu, *, method="bem", accuracy="default", progress=None):
         """From the stored (or now solved) curve at `mu` (`fem_asperity.studies.store`)."""
         from fem_asperity.studies.store import stored_curve
