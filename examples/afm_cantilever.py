@@ -26,7 +26,7 @@ import os
 import warnings
 from pathlib import Path
 
-from fem_asperity import DerjaguinWarning, Scales, Solid, solve_curve
+from fem_asperity import DerjaguinWarning, Scales, Solid, solve_curve, write_all
 
 FAST = os.environ.get("EXAMPLES_FAST") == "1"
 OUT = Path(os.environ.get("EXAMPLES_OUT", "out/examples/afm_cantilever"))
@@ -97,5 +97,5 @@ print(f"pull-off {film_si['p_off'] * 1e9:.3f} nN against {pull_off * 1e9:.3f} nN
 # (each point's force in N, the piezo position and the deflection in m) and cantilever.png, the
 # deflection against the piezo position as the instrument records it.
 
-written = lever.write(OUT, scales)
+written = write_all(lever, OUT, scales)
 print("wrote " + ", ".join(p.name for p in written) + f" to {OUT}/")

@@ -2,12 +2,12 @@
 through Lennard-Jones 9-3 surface springs.
 
 The closed forms load at once (numpy and scipy only): `Scales`, `tabor_parameter`,
-`effective_modulus`, the paper's laws `PAPER_LAWS` / `AsperityLaws`. The solvers load on first
-use (scikit-fem and the path machinery): `solve_curve`, `solve_to_tolerance`, `Solid`,
-`stored_curve`, `sweep`, `jump_in_onset`, `refit`. Subpackages, bottom up: `plumbing` (errors,
-checks, files, CLI helpers), `closed_forms`, `solids` (FE and boundary integral), `path` (the
-surface problem and path following), `solver` (presets, one curve, its files), `studies` (onset,
-store, sweeps, refit); see docs/ARCHITECTURE.md.
+`effective_modulus`, the paper's laws `PAPER_LAWS` / `AsperityLaws`. The solvers load on first use
+(scikit-fem and the path machinery): `solve_curve`, `solve_to_tolerance`, `Solid`, `stored_curve`,
+`sweep`, `jump_in_onset`, `refit`, `write_all` (a curve's files). Subpackages, bottom up: `plumbing`
+(errors, checks, files, CLI helpers), `closed_forms`, `solids` (FE and boundary integral), `path`
+(the surface problem and path following), `solver` (presets, one curve, its files), `studies`
+(onset, store, sweeps, refit); see docs/ARCHITECTURE.md.
 """
 
 from importlib import import_module
@@ -26,6 +26,7 @@ _LAZY = {
     "solve_curve": "solver.solve",
     "solve_to_tolerance": "solver.solve",
     "CurveResult": "solver.result",
+    "write_all": "solver.output",
     "Solid": "solids.fe",
     "stored_curve": "studies.store",
     "jump_in_onset": "studies.onset",

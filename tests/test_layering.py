@@ -126,7 +126,7 @@ def test_editing_help_or_a_plot_keeps_stored_curves_and_editing_the_solver_disca
     help_edit = _revision_with(monkeypatch, "fem_asperity.__main__",
                                lambda s: s.replace('help="print JSON', 'help="write JSON'))
     plot_edit = _revision_with(monkeypatch, "fem_asperity.solver.output",
-                               lambda s: s.replace("figsize=(10, 4)", "figsize=(11, 4)"))
+                               lambda s: s.replace("figsize=(10, 4.5)", "figsize=(11, 4.5)"))
     comment_edit = _revision_with(monkeypatch, "fem_asperity.path.continuation",
                                   lambda s: s.replace('"""', '"""Edited. ', 1) + "\n# a note\n")
     solver_edit = _revision_with(monkeypatch, "fem_asperity.path.surface",

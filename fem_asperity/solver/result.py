@@ -150,14 +150,6 @@ class CurveResult:
                 "spring_constant": self.spring_constant,
                 "p_end": self.p_end, "unstable_branch": self.unstable_branch}
 
-    def write(self, folder, scales=None):
-        """The curve's files into `folder` (`solver.output.write_all`: CSVs, result.json,
-        curve.png, cantilever.png under load-line control, FE fields; with `scales`, the
-        `Scales` of physical inputs, paths_si.csv and SI axes); returns their paths."""
-        from .output import write_all
-
-        return write_all(self, folder, scales=scales)
-
     def to_dataframe(self, scales=None):
         """The approach and retraction as one pandas DataFrame, a row per point (`path_rows`:
         dimensionless columns, and SI ones with `scales`, the `Scales` of physical inputs;
