@@ -11,6 +11,7 @@ whole surface solved, in SI, with the model the surface needs."""
 import argparse
 import sys
 from functools import partial
+from pathlib import Path
 
 import numpy as np
 
@@ -339,14 +340,18 @@ def main(argv=None):
 
 def _law_table(args, parser):
     """`law-table`: rebuild the table (solving what the store lacks) and print its errors."""
-    from fem_asperity.plumbing.files import write_atomic
+    from fem_asperity.plumbing.files import writable_folder, write_atomic
 
     from .law_table_build import build_table, report
 
     if args.jobs is not None and args.jobs < 1:
         parser.error(f"law-table: --jobs must be >= 1; got {args.jobs}")
+    out = Path(args.out or TABLE_FILE)
+    writable_folder(out.parent, "--out")  # before minutes of solves
+    if args.report:
+        writable_folder(Path(args.report).parent, "--report")
     bar = ProgressBar("curves of the table (stored for next time)")
-    table = build_table(args.out or TABLE_FILE, jobs=args.jobs, progress=bar)
+    table = build_table(out, jobs=args.jobs, progress=bar)
     bar.close()
     rows = [{"held_out_mu": e["held_out"], "force": e["force"], "jump": e["jump"],
              "f_max_relative": max((abs(x) for x in e["f_max"] if x is not None), default=None)}
@@ -355,7 +360,7 @@ def _law_table(args, parser):
         dump_json({"record": table.record, "errors": list(table.errors)})
     else:
         print_table(rows, ("held_out_mu", "force", "jump", "f_max_relative"))
-        print(f"wrote {args.out or TABLE_FILE}", file=sys.stderr)
+        print(f"wrote {out}", file=sys.stderr)
     if args.report:
         write_atomic(args.report, report(table))
     return 0

@@ -116,3 +116,12 @@ def test_the_table_refuses_what_it_cannot_answer_in_one_line(capsys, args, names
     code, out, err = run_gw(capsys, args)
     assert code == 2 and out == "" and len(err) == 1, err
     assert all(n in err[0] for n in names), err
+
+
+def test_law_table_refuses_an_output_it_cannot_write_before_solving(capsys, tmp_path):
+    blocker = tmp_path / "a_file"
+    blocker.write_text("a user's file\n")
+    code, out, err = run_gw(capsys, ["law-table", "--out", str(blocker / "table.npz")])
+    assert code == 2 and len(err) == 1 and "--out" in err[0], err
+    assert not any("curves of the table" in line for line in err)  # nothing was solved
+    assert blocker.read_text() == "a user's file\n"
