@@ -21,14 +21,12 @@ the output folder (default out/examples/fig9).
 # Figs. 10-13 too: the validation stage has no Fig.-9-only entry point.
 
 import csv
-import io
 import os
 from pathlib import Path
 
 import numpy as np
 from matplotlib.figure import Figure
 
-from fem_asperity.plumbing.files import save_figure, write_atomic
 from validation.rough_surface import EPS_NM, FIG9_MU, f_max, figure_data
 
 FAST = os.environ.get("EXAMPLES_FAST") == "1"  # nothing to speed up: kept for uniformity
@@ -82,15 +80,16 @@ for axis in (ax_f, ax_s, inset):
     axis.grid(alpha=0.3)
 ax_f.legend(fontsize=8, loc="lower left")
 ax_s.legend(fontsize=8)
-print(f"wrote {save_figure(fig, OUT / 'fig9.png')}")
+fig.savefig(OUT / "fig9.png", dpi=150, bbox_inches="tight")
+print(f"wrote {OUT / 'fig9.png'}")
 
 # %%
 # The data behind the figure as CSV: one row per d̃, columns F_mu<μ> and S_mu<μ>.
 
-buffer = io.StringIO()
-writer = csv.writer(buffer, lineterminator="\n")
-writer.writerow(["d"] + [f"{q}_mu{mu:g}" for mu in FIG9_MU for q in ("F", "S")])
-for i, di in enumerate(d):
-    writer.writerow([f"{di:.10g}"] + [f"{curves[mu][q][i]:.10g}" for mu in FIG9_MU
-                                      for q in ("F", "S")])
-print(f"wrote {write_atomic(OUT / 'fig9.csv', buffer.getvalue())}")
+with open(OUT / "fig9.csv", "w", newline="") as file:
+    writer = csv.writer(file, lineterminator="\n")
+    writer.writerow(["d"] + [f"{q}_mu{mu:g}" for mu in FIG9_MU for q in ("F", "S")])
+    for i, di in enumerate(d):
+        writer.writerow([f"{di:.10g}"] + [f"{curves[mu][q][i]:.10g}" for mu in FIG9_MU
+                                          for q in ("F", "S")])
+print(f"wrote {OUT / 'fig9.csv'}")

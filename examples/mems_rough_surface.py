@@ -35,13 +35,11 @@ EXAMPLES_OUT names the output folder (default out/examples/mems_rough_surface).
 # σRη stays above McCool's limit over the roughness sweep.
 
 import csv
-import io
 import os
 from pathlib import Path
 
 import gw
 from fem_asperity import Scales, effective_modulus
-from fem_asperity.plumbing.files import write_atomic
 
 FAST = os.environ.get("EXAMPLES_FAST") == "1"
 OUT = Path(os.environ.get("EXAMPLES_OUT", "out/examples/mems_rough_surface"))
@@ -157,11 +155,11 @@ print(f"\nsolved BEM law ({SOLVED_ACCURACY}): F̄max = {best_solved.f_max:.4g} "
       f"{OFF:+.1%} off it (interpolation error of the solved law {solved.interpolation_error:.1e})")
 
 # %%
-# Output: the sweep as CSV (written atomically: a reader sees the old file or the whole new one).
+# Output: the sweep as CSV.
 
-buffer = io.StringIO()
-writer = csv.DictWriter(buffer, fieldnames=list(rows[0]), lineterminator="\n")
-writer.writeheader()
-writer.writerows({k: f"{v:.10g}" for k, v in r.items()} for r in rows)
-path = write_atomic(OUT / "mems_rough_surface.csv", buffer.getvalue())
+path = OUT / "mems_rough_surface.csv"
+with open(path, "w", newline="") as file:
+    writer = csv.DictWriter(file, fieldnames=list(rows[0]), lineterminator="\n")
+    writer.writeheader()
+    writer.writerows({k: f"{v:.10g}" for k, v in r.items()} for r in rows)
 print(f"\nwrote {path}")

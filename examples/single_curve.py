@@ -30,14 +30,12 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
-from fem_asperity import Scales, solve_curve
+from fem_asperity import Scales, solve_curve, write_all
 from fem_asperity.closed_forms.reference import (
     dmt_pull_off,
     jkr_pull_off,
     maugis_dugdale_pull_off,
 )
-from fem_asperity.plumbing.files import save_figure
-from fem_asperity.solver.output import write_all
 
 FAST = os.environ.get("EXAMPLES_FAST") == "1"
 OUT = Path(os.environ.get("EXAMPLES_OUT", "out/examples/single_curve"))
@@ -127,4 +125,5 @@ ax.secondary_xaxis("top", functions=(lambda d: d * nm, lambda s: s / nm)).set_xl
 nn = asperity.force * 1e9
 ax.secondary_yaxis("right", functions=(lambda p: p * nn, lambda f: f / nn)).set_ylabel(
     f"P [nN] (R = 1 μm, Δγ = 0.1 J/m², E* = {asperity.E_star / 1e9:.3g} GPa)")
-print(f"wrote {save_figure(fig, OUT / 'force_separation.png')}")
+fig.savefig(OUT / "force_separation.png", dpi=150, bbox_inches="tight")
+print(f"wrote {OUT / 'force_separation.png'}")

@@ -80,12 +80,17 @@ def test_scales_json():
     assert row["force"] == pytest.approx(2 * 3.141592653589793 * 1e-6 * 0.05)
 
 
+#: The single-asperity sweep `validation all` is tested on: its figures' μ (0.091, 0.425, 1.971),
+#: its loops' (0.5, 1, 2, 5) and a few more on each side of the onset for the refits' intervals.
+SHORT_SWEEP = (0.05, 0.091, 0.19, 0.3, 0.425, 0.5, 0.72, 1.0, 1.971, 2.0, 5.0)
+
+
 @pytest.mark.slow
 def test_validation_all_writes_its_files(tmp_path, monkeypatch, capsys):
     """`validation all` end to end, in this process so that the layered map can be cut to the
     one point `test_layered.py` solves (its 16 layers x 3 mu were two thirds of this test's
     time; that map is the layered tests' to check, the composition of the report is this one's)."""
-    from validation import layered
+    from validation import layered, single_asperity
     from validation.__main__ import main
 
     out = tmp_path / "out"
@@ -93,6 +98,7 @@ def test_validation_all_writes_its_files(tmp_path, monkeypatch, capsys):
     for name, value in (("MUS", (1.0,)), ("THICKNESSES", (1.0,)), ("RATIOS", (0.5,)),
                         ("FE_CHECKS", ((1.0, 1.0, 0.5),)), ("ROUGH_LAYERS", ((1.0, 0.5),))):
         monkeypatch.setattr(layered, name, value)
+    monkeypatch.setattr(single_asperity, "SWEEP_MU", SHORT_SWEEP)
     # The BEM judged (the FE is its cross-check, solved without estimates): the FE sweep with
     # estimates costs minutes at μ = 3-5.
     assert main(["all", "--out", str(out), "--json", "--compare-mu", "1", "--accuracy", "draft",
