@@ -104,19 +104,14 @@ print(f"F̄max = {best.f_max:.4g} at d̃ = {best.d_at_max:.3f} "
 #     F̄ = F / (2πR A₀ Δγ η),   so   F / A₀ = F̄ · 2πRΔγ · η.
 #
 # 2πRΔγ [N] is `scales.force`, η [1/m²] the summits per square metre: their product is a pressure.
+# `Strength.si` does this (and d = d̃σ).
 
-
-def adhesion_pressure(f_bar):
-    """Tensile force per nominal area [Pa] of a dimensionless total force F̄ (positive F̄max)."""
-    return f_bar * scales.force * DENSITY
-
-
-PRESSURE = adhesion_pressure(best.f_max)
+PRESSURE = best.si(scales, sigma=SIGMA, density=DENSITY).pressure_max
 print(f"F/A₀ = F̄max · 2πRΔγ · η = {best.f_max:.4g} × {scales.force:.4g} N × {DENSITY:.3g} m⁻² "
       f"= {PRESSURE:.4g} Pa ({PRESSURE / 1e3:.3g} kPa)")
 # For scale: if every summit pulled with Bradley's 2πRΔγ at once (F̄ = 1), the pressure would be
 # 2πRΔγη; roughness leaves only the fraction F̄max of it.
-print(f"upper bound 2πRΔγη (every summit at Bradley's pull-off): {adhesion_pressure(1.0):.4g} Pa")
+print(f"upper bound 2πRΔγη (every summit at Bradley's pull-off): {scales.force * DENSITY:.4g} Pa")
 
 # %%
 # Step 5: the roughness sweep. Each σ changes ζ and, through σRη, ω. The table shows the strength
@@ -128,10 +123,11 @@ rows = []
 for sigma in SIGMAS:
     s = gw.RoughSurface.from_physical(sigma=sigma, radius=RADIUS, density=DENSITY, eps=EPS)
     st = gw.strength(law, s)
+    si = st.si(scales, sigma=sigma, density=DENSITY)
     rows.append({"sigma_nm": sigma * 1e9, "sigma_r_eta": sigma * RADIUS * DENSITY,
                  "omega": s.omega, "zeta": s.zeta, "mu": MU, "f_max": st.f_max,
-                 "d_at_max": st.d_at_max, "d_at_max_nm": st.d_at_max * sigma * 1e9,
-                 "pressure_pa": adhesion_pressure(st.f_max)})
+                 "d_at_max": st.d_at_max, "d_at_max_nm": si.d_at_max * 1e9,
+                 "pressure_pa": si.pressure_max})
 
 print("\n" + " ".join(f"{h:>{w}}" for h, w in (("σ [nm]", 7), ("σRη", 7), ("ω", 6), ("ζ", 7),
                                                ("F̄max", 10), ("d̃ at max", 9), ("F/A₀ [Pa]", 11))))
@@ -151,7 +147,8 @@ solved = gw.solved_law(MU, method="bem", accuracy=SOLVED_ACCURACY)
 best_solved = gw.strength(solved, surface)
 OFF = best.f_max / best_solved.f_max - 1.0
 print(f"\nsolved BEM law ({SOLVED_ACCURACY}): F̄max = {best_solved.f_max:.4g} "
-      f"(F/A₀ = {adhesion_pressure(best_solved.f_max):.4g} Pa); the paper's law is "
+      f"(F/A₀ = {best_solved.si(scales, sigma=SIGMA, density=DENSITY).pressure_max:.4g} Pa); "
+      "the paper's law is "
       f"{OFF:+.1%} off it (interpolation error of the solved law {solved.interpolation_error:.1e})")
 
 # %%

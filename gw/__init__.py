@@ -2,12 +2,13 @@
 
 `RoughSurface` (ζ = σ/ε, ω, or from σ, R, η, ε); laws: `PaperLaw` (the paper's or refitted
 constants), `TabulatedLaw` (a solved approach path), `solved_law` (a stored BEM/FE curve);
-integrals: `totals` (F̄, S̄ at separations d̃), `strength` (F̄max). Units: see the README.
+integrals: `totals` (F̄, S̄ at separations d̃), `strength` (F̄max, a `Strength`; its `.si(...)`
+in Pa and m). Units: see the README.
 """
 
 import fem_asperity  # noqa: F401  first: its import quiets a Ctrl-C while the modules load
 
-from .integrate import strength, totals
+from .integrate import Strength, StrengthSI, strength, totals
 from .laws import PaperLaw, TabulatedLaw
 from .surface import RoughSurface, omega_mccool
 
@@ -20,5 +21,5 @@ def __getattr__(name):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-__all__ = ["PaperLaw", "RoughSurface", "TabulatedLaw", "omega_mccool", "solved_law", "strength",
-           "totals"]
+__all__ = ["PaperLaw", "RoughSurface", "Strength", "StrengthSI", "TabulatedLaw", "omega_mccool",
+           "solved_law", "strength", "totals"]

@@ -180,6 +180,12 @@ def _si(scales, args, d, force, area=None):
     return si
 
 
+def _strength_si(found, scales, args):
+    """A `Strength` in SI as the JSON holds it: strength [Pa], d_at_max [m]."""
+    si = found.si(scales, sigma=args.sigma, density=args.density)
+    return {"strength": si.pressure_max, "d_at_max": si.d_at_max}
+
+
 def _compare(args, mu, surface, scales):
     """`fmax --compare`: F̄max and its d̃ from the paper's law, the refitted law and the solved law,
     their differences relative to the solved one, and a warning where the paper's is off by more
@@ -197,8 +203,7 @@ def _compare(args, mu, surface, scales):
             for name, s in found.items()}
     if scales is not None:  # physical inputs: the strength [Pa] and its d [m] too
         for name, row in rows.items():
-            si = _si(scales, args, found[name].d_at_max, found[name].f_max)
-            row["si"] = {"strength": si["F_Pa"], "d_at_max": si["d_m"]}
+            row["si"] = _strength_si(found[name], scales, args)
     # not an error bar on F_max: how well the tabulated law's PCHIP predicts its own samples
     rows["solved"][LAW_ERROR] = laws["solved"].interpolation_error
     rows["solved"]["method"] = method
@@ -247,8 +252,7 @@ def _fmax(args, law, surface, scales, head):
     if reading is not None:
         row["omega_reading"] = reading
     if scales is not None:  # physical inputs: the same in SI
-        si = _si(scales, args, found.d_at_max, found.f_max)
-        row["si"] = {"strength": si["F_Pa"], "d_at_max": si["d_m"]}
+        row["si"] = _strength_si(found, scales, args)
     warning = _paper_warning(law, surface, found) if args.law == "paper" else None
     if warning is not None:
         row["warning"] = warning

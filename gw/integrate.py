@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from fem_asperity.plumbing.checks import in_range
+from fem_asperity.plumbing.checks import in_range, positive
 from fem_asperity.plumbing.errors import InputError
 
 from .surface import height_pdf
@@ -106,9 +106,27 @@ def check_stiffness(law, surface):
 
 @dataclass(frozen=True)
 class Strength:
-    """Strength of adhesion F̄max = −min F̄ (positive) and the d̃ where it occurs."""
+    """Strength of adhesion F̄max = −min F̄ (positive, in 2πRA₀Δγη) and the d̃ where it occurs
+    (in σ)."""
 
     f_max: float
+    d_at_max: float
+
+    def si(self, scales, *, sigma, density):
+        """This strength in SI for asperities of `scales` (`fem_asperity.Scales`: 2πRΔγ [N]) on a
+        surface of rms height `sigma` [m] and summit density `density` [1/m²]: `StrengthSI`,
+        the tension per nominal area F̄max·2πRΔγ·η [Pa] and d̃·σ [m]."""
+        sigma, density = positive("sigma", sigma, "m"), positive("density", density, "1/m^2")
+        return StrengthSI(pressure_max=self.f_max * scales.force * density,
+                          d_at_max=self.d_at_max * sigma)
+
+
+@dataclass(frozen=True)
+class StrengthSI:
+    """`Strength` in SI: pressure_max, the largest tension per nominal area F_max/A₀ [Pa]
+    (positive); d_at_max, the mean separation where it occurs [m]."""
+
+    pressure_max: float
     d_at_max: float
 
 

@@ -404,3 +404,20 @@ def test_cli_curve_takes_the_most_points_and_a_range(capsys):
     out = json.loads(out)
     assert len(out["d"]) == POINTS_MAX and out["d"][0] == -1.0 and out["d"][-1] == 3.0
     assert POINTS_MAX == 10_000  # the bound named in the refusal above
+
+
+def test_a_strength_in_si_is_the_tension_per_nominal_area_and_its_separation():
+    """F/A₀ = F̄max·2πRΔγη (eqs. 23, 27) and d = d̃σ, from Scales built of physical inputs; a
+    non-positive σ or η is refused."""
+    from fem_asperity import Scales
+
+    radius, dgamma, eps, sigma, density = 2e-6, 0.1, 3e-10, 1e-9, 1e12
+    scales = Scales.for_mu(1.0, eps=eps, R=radius, dgamma=dgamma)
+    found = strength(PaperLaw(1.0), RoughSurface(zeta=sigma / eps))
+    si = found.si(scales, sigma=sigma, density=density)
+    assert si.pressure_max == pytest.approx(found.f_max * 2 * np.pi * radius * dgamma * density,
+                                            rel=1e-12)
+    assert si.d_at_max == pytest.approx(found.d_at_max * sigma, rel=1e-12)
+    for bad in ({"sigma": 0.0, "density": density}, {"sigma": sigma, "density": -1.0}):
+        with pytest.raises(InputError):
+            found.si(scales, **bad)
