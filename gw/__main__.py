@@ -27,10 +27,11 @@ from fem_asperity.solver.presets import PRESETS
 from fem_asperity.solver.solve import solvable_mu
 from fem_asperity.studies.refit import stored_refit
 
+from .corrected_law import ERROR_FILE, stated_error
 from .explicit import cli as explicit_command
 from .integrate import D_MAX, check_stiffness, separation_range, strength, totals
 from .law_table import TABLE_FILE, TableLaw, shipped_table
-from .laws import PaperLaw
+from .laws import CorrectedLaw, PaperLaw
 from .surface import RoughSurface, omega_mccool
 from .tables import solved_law
 
@@ -42,7 +43,7 @@ COMPARE_WARNING = 0.1
 POINTS_MAX = 10_000
 #: Laws solved at --mu (a curve of that solver), which takes mu in solver.solve.MU_RANGE only.
 SOLVED = ("fem", "bem")
-LAWS = ("paper", "solved", "refit") + SOLVED
+LAWS = ("paper", "corrected", "solved", "refit") + SOLVED
 #: `--compare`'s name for the solved law's own interpolation error, a fraction of the law's
 #: largest |P̄| (not of F̄max: read beside relative_to_solved it looked like an error bar).
 LAW_ERROR = "law_interpolation_error_of_max_force"
@@ -60,7 +61,9 @@ def _common(parser):
     physical.add_argument("--density", type=float, help="asperity density eta [1/m^2]")
     add_physical_arguments(physical)
     parser.add_argument("--law", choices=LAWS, default="paper",
-                        help="paper: the paper's closed forms; solved: the table of BEM-solved "
+                        help="paper: the paper's closed forms; corrected: the corrected closed "
+                             "form (docs/corrected_law.md; its measured F_max error goes into "
+                             "the output); solved: the table of BEM-solved "
                              "laws shipped with the package (mu 0.01-50, no solve; its measured "
                              "error goes into the output); refit: the paper's forms with the "
                              "constants refitted from BEM curves (stored); fem, bem: the approach "
@@ -100,6 +103,18 @@ def build_parser():
     table.add_argument("--report", help="also write the measured errors as Markdown to this "
                                         "file (docs/law_table.md is this)")
     table.add_argument("--json", action="store_true", help="print the errors as JSON")
+    corrected = commands.add_parser(
+        "corrected-law", help="measure the corrected closed form's F_max error against the "
+        "table of solved laws (--fit: refit its constants first, minutes)")
+    corrected.add_argument("--fit", action="store_true",
+                           help="refit the constants to the table and print them with 95%% "
+                                "intervals (the package's own change only by editing "
+                                "fem_asperity/closed_forms/corrected.py)")
+    corrected.add_argument("--out", help="the error file (default: the package's own, "
+                                         f"{ERROR_FILE.name})")
+    corrected.add_argument("--report", help="also write the form, constants and errors as "
+                                            "Markdown to this file (docs/corrected_law.md)")
+    corrected.add_argument("--json", action="store_true", help="print the errors as JSON")
     return parser
 
 
@@ -160,6 +175,8 @@ def _law(args, mu):
         return PaperLaw(mu)
     if args.law == "solved":
         return shipped_table().law(mu)
+    if args.law == "corrected":
+        return CorrectedLaw(mu)
     accuracy = args.accuracy or "default"
     if args.law == "refit":
         fit = stored_refit(accuracy=accuracy, announce=partial(print, file=sys.stderr))
@@ -248,6 +265,8 @@ def _fmax(args, law, surface, scales, head):
     row = head | {"f_max": found.f_max, "d_at_max": found.d_at_max}
     if isinstance(law, TableLaw):
         row["law_error"] = _table_error(law, found.f_max)
+    if isinstance(law, CorrectedLaw):
+        row["law_error"] = _corrected_error(law, found.f_max)
     reading = _other_reading(law, surface, found)
     if reading is not None:
         row["omega_reading"] = reading
@@ -285,6 +304,17 @@ def _table_error(law, f_max=None):
     return out
 
 
+def _corrected_error(law, f_max):
+    """The corrected law's error as the JSON holds it: F̄max's measured against the table of
+    solved laws, absolute and relative (None outside the measured μ, with a note)."""
+    relative = stated_error(law.mu)
+    if relative is None:
+        return {"f_max": None, "f_max_relative": None,
+                "note": "outside the mu of the table of solved laws: not measured"}
+    return {"f_max": relative * f_max, "f_max_relative": relative,
+            "against": "the table of solved laws (docs/corrected_law.md)"}
+
+
 def _paper_warning(law, surface, found):
     """A warning where the table of solved laws puts the paper's F̄max off by more than
     COMPARE_WARNING (None within it, or outside the table's μ)."""
@@ -312,6 +342,8 @@ def main(argv=None):
         return explicit_command.main(args, parser)
     if args.command == "law-table":
         return _law_table(args, parser)
+    if args.command == "corrected-law":
+        return _corrected_law(args)
     mu, surface, scales = _inputs(args, parser)
     _check(args, parser, mu, surface)
     if args.command == "fmax" and args.compare:
@@ -367,6 +399,43 @@ def _law_table(args, parser):
         print(f"wrote {out}", file=sys.stderr)
     if args.report:
         write_atomic(args.report, report(table))
+    return 0
+
+
+def _corrected_law(args):
+    """`corrected-law`: (refit and) measure the corrected law; write the error file, the report."""
+    from fem_asperity.closed_forms.corrected import CORRECTED_LAWS
+    from fem_asperity.plumbing.files import writable_folder, write_atomic
+
+    from .corrected_law import fit, intervals, measure, record, report, save_errors
+
+    out = Path(args.out or ERROR_FILE)
+    writable_folder(out.parent, "--out")  # before minutes of integrals
+    if args.report:
+        writable_folder(Path(args.report).parent, "--report")
+    constants = CORRECTED_LAWS
+    if args.fit:
+        bar = ProgressBar("fit of the corrected law's constants")
+        constants = fit(progress=bar)
+        bar.close()
+    found = intervals(constants)
+    bar = ProgressBar("F_max errors of the corrected law at the table's mu")
+    rows = measure(constants, progress=bar)
+    bar.close()
+    made = record("python -m gw corrected-law" + (" --fit" if args.fit else ""))
+    save_errors(out, rows, constants, made)
+    if args.json:
+        dump_json({"constants": vars(constants), "intervals": found, "rows": rows,
+                   "record": made})
+    else:
+        print_table([{"mu": r["mu"], "held_out": r["held_out"], "largest": r["largest"]}
+                     for r in rows], ("mu", "held_out", "largest"))
+        for name, (lo, hi) in found.items():
+            print(f"{name} = {getattr(constants, name)!r}  (95%: {lo:.6g} to {hi:.6g})",
+                  file=sys.stderr)
+        print(f"wrote {out}", file=sys.stderr)
+    if args.report:
+        write_atomic(args.report, report(rows, constants, found, made))
     return 0
 
 

@@ -7,6 +7,7 @@ the half-space). Both laws here refuse a non-finite δ̄o, as `fem_asperity.clos
 does, and a force or area beyond the float range, with `InputError`. Two kinds:
 
 - `PaperLaw`: the paper's closed forms (eqs. 2, 7, 9-19) with its constants or refitted ones;
+- `CorrectedLaw`: the corrected closed form (`fem_asperity.closed_forms.corrected`);
 - `TabulatedLaw`: the approach path of an FE or boundary-integral curve at the same μ, jump
   included, interpolated piecewise (PCHIP per branch), Bradley's rigid force beyond its first
   point and a Hertz continuation beyond its last.
@@ -15,6 +16,7 @@ does, and a force or area beyond the float range, with `InputError`. Two kinds:
 import numpy as np
 from scipy.interpolate import PchipInterpolator
 
+from fem_asperity.closed_forms.corrected import CORRECTED_LAWS
 from fem_asperity.closed_forms.laws import PAPER_LAWS
 from fem_asperity.closed_forms.lj import bradley_force
 from fem_asperity.plumbing.checks import finite_result, in_range, positive
@@ -55,6 +57,25 @@ class PaperLaw:
     def area(self, delta):
         """Ā(δ̄o) [εR] on approach at δ̄o `delta` [ε] (array or scalar)."""
         return _checked(self._at_mu.area, delta, AREA)
+
+
+class CorrectedLaw:
+    """The corrected closed form (`fem_asperity.closed_forms.corrected`) at one μ; its F̄max
+    error against the solved law is `f_max_error` (relative, the largest measured over the
+    table's μ and ζ: docs/corrected_law.md)."""
+
+    def __init__(self, mu, constants=CORRECTED_LAWS, *, name="corrected"):
+        self.mu, self.constants, self.name = positive("mu", mu), constants, name
+        self._at_mu = constants.at(mu)
+        self.breakpoints = (self._at_mu.delta_jump,)
+
+    def force(self, delta):
+        """P̄(δ̄o) [2πRΔγ] on approach at δ̄o `delta` [ε] (array or scalar)."""
+        return self._at_mu.force(_delta(delta))
+
+    def area(self, delta):
+        """Ā(δ̄o) [εR] on approach at δ̄o `delta` [ε] (array or scalar)."""
+        return self._at_mu.area(_delta(delta))
 
 
 class TabulatedLaw:
