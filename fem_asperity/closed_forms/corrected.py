@@ -38,10 +38,11 @@ U_MIN = S_MIN**2 - np.sqrt(2.0 * np.pi * S_MIN)
 #: Where the JKR δ-term turns (d/ds[s² − √(2πs)] = 0): the contact branch is monotone above it.
 S_TURN = (np.sqrt(2.0 * np.pi) / 4.0) ** (2.0 / 3.0)
 #: Samples of s per law: geometric from S_TURN to S_TURN + S_SPAN, 400 per decade; the GW
-#: integrals read P̄(δ̄o) off them linearly (test_corrected.py checks the curve against a root
-#: find to 1e-4).
+#: integrals read P̄(δ̄o) off them linearly (test_corrected_law.py checks the curve against a
+#: root find of the parametric form to 1e-4 max(1, |P̄|)).
 SAMPLES, S_SPAN = 4000, 2e4
-#: Newton steps for x̄_B (quadratic from y = x̄⁻² ≥ 1; 30 reach rounding for every P̄ ≥ −1).
+#: Newton steps for x̄_B: quadratic from above, but linear at P̄ = −1 (Bradley's minimum, a double
+#: root), where 30 leave 2e-9 in x̄ and nothing in P̄ (test_corrected_law.py).
 WALL_STEPS = 30
 
 
@@ -102,24 +103,26 @@ class CorrectedLawAtMu:
     def force(self, delta_o):
         """P̄(δ̄o) [2πRΔγ] on approach (< 0 tensile)."""
         d = np.asarray(in_range("delta_o", delta_o), dtype=float)
-        out = np.interp(d, self._delta, self._p, left=np.nan)
-        far = d > self.delta_jump
-        out[far] = bradley_force(d[far])
+        flat = d.ravel()
+        out = np.interp(flat, self._delta, self._p, left=np.nan)
+        far = flat > self.delta_jump
+        out[far] = bradley_force(flat[far])
         deep = np.isnan(out)
-        out[deep] = self._hertz(d[deep])
-        return finite_result(out, "the corrected law's force")
+        out[deep] = self._hertz(flat[deep])
+        return finite_result(out.reshape(d.shape), "the corrected law's force")
 
     def area(self, delta_o):
         """Ā(δ̄o) [εR]: JKR's contact area π ā², zero above the jump."""
         d = np.asarray(in_range("delta_o", delta_o), dtype=float)
-        out = np.interp(d, self._delta, self._area, left=np.nan)
-        out[d > self.delta_jump] = 0.0
-        deep = np.isnan(out)
-        out[deep] = np.pi * (self._delta[0] - d[deep] + self._area[0] / np.pi)  # Hertz: dĀ/dδ̄o = −π
-        return out
+        flat = d.ravel()
+        out = np.interp(flat, self._delta, self._area, left=np.nan)
+        out[flat > self.delta_jump] = 0.0
+        deep = np.isnan(out)  # beyond the deepest sample: Hertz, dĀ/dδ̄o = −π
+        out[deep] = self._area[0] + np.pi * (self._delta[0] - flat[deep])
+        return out.reshape(d.shape)
 
     def _hertz(self, d):
-        """Beyond the deepest sample (s > S_SPAN, P̄ ~ 1e5 and more): Hertz, P̄ growing like
+        """Beyond the deepest sample (s > S_SPAN, P̄ > 1e12): Hertz, P̄ growing like
         (2/3π)(Δδ̄o/μ)^(3/2) from it."""
         extra = (self._delta[0] - d) / self.mu
         s0 = np.sqrt(max(self._area[0] / (np.pi * self.mu), 0.0))
