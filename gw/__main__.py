@@ -108,8 +108,8 @@ def build_parser():
         "table of solved laws (--fit: refit its constants first, minutes)")
     corrected.add_argument("--fit", action="store_true",
                            help="refit the constants to the table and print them with 95%% "
-                                "intervals (the package's own change only by editing "
-                                "fem_asperity/closed_forms/corrected.py)")
+                                "intervals; needs --out (the package's own constants change "
+                                "only by editing fem_asperity/closed_forms/corrected.py)")
     corrected.add_argument("--out", help="the error file (default: the package's own, "
                                          f"{ERROR_FILE.name})")
     corrected.add_argument("--report", help="also write the form, constants and errors as "
@@ -150,14 +150,15 @@ def _check(args, parser, mu, surface):
         solvable_mu(mu, "mu of a solved law (--law fem|bem, fmax --compare)")
     if args.law == "solved":
         shipped_table().check_mu(mu)
-    if args.accuracy is not None and args.law in ("paper", "solved") and not compare:
+    if args.accuracy is not None and args.law in ("paper", "corrected", "solved") \
+            and not compare:
         parser.error(f"{args.command}: --accuracy applies to --law refit|fem|bem and fmax "
-                     "--compare (the paper's law is closed-form and the table's resolution "
-                     "is fixed: nothing to resolve)")
+                     "--compare (the paper's and the corrected laws are closed-form and the "
+                     "table's resolution is fixed: nothing to resolve)")
     if args.command == "fmax":
         if args.warn_above is not None and not compare:
             parser.error("fmax: --warn-above needs --compare")
-        if compare and args.law == "refit":
+        if compare and args.law in ("refit", "corrected"):
             parser.error("fmax --compare: --law chooses the solved law's method (fem or bem)")
         if args.warn_above is not None:
             in_range("--warn-above", args.warn_above, 0.0, np.inf)
@@ -304,15 +305,18 @@ def _table_error(law, f_max=None):
     return out
 
 
-def _corrected_error(law, f_max):
+def _corrected_error(law, f_max=None):
     """The corrected law's error as the JSON holds it: F̄max's measured against the table of
-    solved laws, absolute and relative (None outside the measured μ, with a note)."""
+    solved laws, relative and (with `f_max`) absolute; None outside the measured μ, with a
+    note."""
     relative = stated_error(law.mu)
     if relative is None:
         return {"f_max": None, "f_max_relative": None,
                 "note": "outside the mu of the table of solved laws: not measured"}
-    return {"f_max": relative * f_max, "f_max_relative": relative,
-            "against": "the table of solved laws (docs/corrected_law.md)"}
+    out = {"f_max_relative": relative,
+           "against": "the table of solved laws, measured at omega = 1, zeta 0.1-316 "
+                      "(docs/corrected_law.md)"}
+    return out | ({"f_max": relative * f_max} if f_max is not None else {})
 
 
 def _paper_warning(law, surface, found):
@@ -354,6 +358,8 @@ def main(argv=None):
         return _fmax(args, law, surface, scales, head)
     if isinstance(law, TableLaw):
         head["law_error"] = _table_error(law)
+    if isinstance(law, CorrectedLaw):
+        head["law_error"] = _corrected_error(law)
     lo, hi = separation_range(law, surface) if args.d is None else args.d
     d = np.linspace(lo, hi, args.points)
     force, area = totals(law, surface, d)
@@ -405,20 +411,29 @@ def _law_table(args, parser):
 def _corrected_law(args):
     """`corrected-law`: (refit and) measure the corrected law; write the error file, the report."""
     from fem_asperity.closed_forms.corrected import CORRECTED_LAWS
+    from fem_asperity.plumbing.errors import InputError
     from fem_asperity.plumbing.files import writable_folder, write_atomic
 
     from .corrected_law import fit, intervals, measure, record, report, save_errors
 
+    if args.fit and args.out is None:  # the shipped file belongs to corrected.py's constants
+        raise InputError("corrected-law --fit: give --out (the package's error file holds the "
+                         "errors of the constants in fem_asperity/closed_forms/corrected.py; "
+                         "put the fitted ones there, then run without --fit)")
     out = Path(args.out or ERROR_FILE)
-    writable_folder(out.parent, "--out")  # before minutes of integrals
-    if args.report:
-        writable_folder(Path(args.report).parent, "--report")
-    constants = CORRECTED_LAWS
+    for path, option in ((out, "--out"), (Path(args.report or out), "--report")):
+        if path.is_dir():
+            raise InputError(f"{option} must be a file; {path} is a folder")
+        writable_folder(path.parent, option)  # before minutes of integrals
+    constants, found = CORRECTED_LAWS, None
     if args.fit:
         bar = ProgressBar("fit of the corrected law's constants")
         constants = fit(progress=bar)
         bar.close()
-    found = intervals(constants)
+    if args.fit or args.report:
+        bar = ProgressBar("95% intervals of the constants")
+        found = intervals(constants, progress=bar)
+        bar.close()
     bar = ProgressBar("F_max errors of the corrected law at the table's mu")
     rows = measure(constants, progress=bar)
     bar.close()
@@ -430,7 +445,7 @@ def _corrected_law(args):
     else:
         print_table([{"mu": r["mu"], "held_out": r["held_out"], "largest": r["largest"]}
                      for r in rows], ("mu", "held_out", "largest"))
-        for name, (lo, hi) in found.items():
+        for name, (lo, hi) in (found or {}).items():
             print(f"{name} = {getattr(constants, name)!r}  (95%: {lo:.6g} to {hi:.6g})",
                   file=sys.stderr)
         print(f"wrote {out}", file=sys.stderr)

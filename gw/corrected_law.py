@@ -2,8 +2,8 @@
 solved laws: its F̄max error on GW surfaces at every table node and held-out μ over the table's ζ,
 and the fit of its constants (`python -m gw corrected-law [--fit]`).
 
-The measured errors ship as package data (ERROR_FILE); `CorrectedLaw.f_max_error` reads the
-largest one at the measured μ around a law's μ, as the table's own error is stated.
+The measured errors ship as package data (ERROR_FILE); `stated_error(mu)` reads the largest one
+at the measured μ around mu, as the table's own error is stated.
 """
 
 import functools
@@ -50,17 +50,16 @@ def measured_mus(table=None):
     return sorted(mus)
 
 
-def f_max_errors(mu, constants=CORRECTED_LAWS, table=None, zetas=ZETAS, law=CorrectedLaw):
-    """Relative F̄max errors at `mu` against the table's law, one per ζ, of the corrected law
-    (or of `law(mu)`, e.g. `PaperLaw`)."""
-    table = table or shipped_table()
-    solved = table.law(mu)
-    law = CorrectedLaw(mu, constants) if law is CorrectedLaw else law(mu)
-    out = []
-    for zeta in zetas:
-        surface = RoughSurface(zeta=float(zeta))
-        out.append(strength(law, surface).f_max / strength(solved, surface).f_max - 1.0)
-    return out
+def _f_max(law, zetas=ZETAS):
+    """F̄max of `law` on GW surfaces (ω = 1) at each ζ."""
+    return np.array([strength(law, RoughSurface(zeta=float(z))).f_max for z in zetas])
+
+
+def f_max_errors(mu, constants=CORRECTED_LAWS, table=None, solved=None):
+    """Relative F̄max errors of the corrected law at `mu` against the table's law, one per ζ of
+    ZETAS (`solved`: the table's F̄max there, if known)."""
+    solved = _f_max((table or shipped_table()).law(mu)) if solved is None else solved
+    return list(_f_max(CorrectedLaw(mu, constants)) / solved - 1.0)
 
 
 def measure(constants=CORRECTED_LAWS, table=None, progress=None):
@@ -68,8 +67,9 @@ def measure(constants=CORRECTED_LAWS, table=None, progress=None):
     table = table or shipped_table()
     rows, mus = [], measured_mus(table)
     for k, (mu, held_out) in enumerate(mus):
-        errors = f_max_errors(mu, constants, table)
-        paper = f_max_errors(mu, table=table, law=PaperLaw)
+        solved = _f_max(table.law(mu))
+        errors = f_max_errors(mu, constants, solved=solved)
+        paper = _f_max(PaperLaw(mu)) / solved - 1.0
         rows.append({"mu": mu, "held_out": held_out, "f_max": errors,
                      "largest": max(abs(e) for e in errors),
                      "paper_largest": max(abs(e) for e in paper)})
@@ -87,8 +87,7 @@ def _fit_samples(table):
         d = np.linspace(min(e.approach.delta), 3.0 * top, CURVE_POINTS)
         if e.jump_in is not None:
             d = d[np.abs(d - e.jump_in) > 0.05 * (1.0 + np.sqrt(e.mu))]
-        f_max = [strength(law, RoughSurface(zeta=float(z))).f_max for z in ZETAS]
-        samples.append((e.mu, np.array(f_max), d, law.force(d)))
+        samples.append((e.mu, _f_max(law), d, law.force(d)))
     return samples
 
 
@@ -102,8 +101,8 @@ def _residuals(table, samples, c_off, progress=None):
         out = []
         for mu, f_max, d, p in samples:
             law = CorrectedLaw(mu, constants)
-            ratio = [strength(law, RoughSurface(zeta=float(z))).f_max for z in ZETAS] / f_max
-            out += [np.log(ratio), CURVE_WEIGHT * (law.force(d) - p) / np.sqrt(len(d))]
+            out += [np.log(_f_max(law) / f_max),
+                    CURVE_WEIGHT * (law.force(d) - p) / np.sqrt(len(d))]
         calls[0] += 1
         if progress:
             progress(min(calls[0] / 40.0, 0.99))
@@ -121,13 +120,14 @@ def fit(table=None, start=CORRECTED_LAWS, progress=None):
     `_residuals`, from `start`)."""
     table = table or shipped_table()
     residuals = _residuals(table, _fit_samples(table), start.c_off, progress)
-    result = least_squares(residuals, astuple(start)[:len(_fitted_names())], x_scale=0.1)
+    result = least_squares(residuals, astuple(start)[:len(_fitted_names())], x_scale=0.1,
+                           diff_step=INTERVAL_STEP)  # as `intervals`: over the residuals' jumps
     if not result.success:
         raise InputError(f"the corrected law's fit did not converge: {result.message}")
     return CorrectedLaws(*(float(v) for v in result.x), c_off=start.c_off)
 
 
-def intervals(constants=CORRECTED_LAWS, table=None):
+def intervals(constants=CORRECTED_LAWS, table=None, progress=None):
     """95 % intervals {name: (lo, hi)} of the fitted constants at `constants`, from the
     residuals' Jacobian. Central differences at INTERVAL_STEP: the residuals jump where a sample
     crosses δ̄J, so steps of ~1e-8 (least_squares' own) read those jumps as slopes of ~1e8 and
@@ -135,7 +135,8 @@ def intervals(constants=CORRECTED_LAWS, table=None):
     table = table or shipped_table()
     names = _fitted_names()
     x = np.array([getattr(constants, n) for n in names])
-    residuals = _residuals(table, _fit_samples(table), constants.c_off)
+    residuals = _residuals(table, _fit_samples(table), constants.c_off,
+                           progress and (lambda f: progress(min(f * 40.0 / 9.0, 1.0))))
     jacobian = np.column_stack([
         (residuals(x + h) - residuals(x - h)) / (2.0 * h[i])
         for i, h in enumerate(np.diag(INTERVAL_STEP * np.abs(x)))])

@@ -3,8 +3,8 @@
 A law is any object with `mu`, `name`, `breakpoints` (the δ̄o, in ε, where force or area has a
 kink or a jump: δ̄oc, δ̄o*, the jump-in) and vectorised `force(delta)` (P̄, in 2πRΔγ, < 0 tensile),
 `area(delta)` (Ā, in εR) defined for every finite δ̄o in ε (negative = the asperity presses into
-the half-space). Both laws here refuse a non-finite δ̄o, as `fem_asperity.closed_forms.laws`
-does, and a force or area beyond the float range, with `InputError`. Two kinds:
+the half-space). The laws here refuse a non-finite δ̄o, as `fem_asperity.closed_forms.laws`
+does, and a force or area beyond the float range, with `InputError`. Three kinds:
 
 - `PaperLaw`: the paper's closed forms (eqs. 2, 7, 9-19) with its constants or refitted ones;
 - `CorrectedLaw`: the corrected closed form (`fem_asperity.closed_forms.corrected`);
@@ -61,8 +61,8 @@ class PaperLaw:
 
 class CorrectedLaw:
     """The corrected closed form (`fem_asperity.closed_forms.corrected`) at one μ; its F̄max
-    error against the solved law is `f_max_error` (relative, the largest measured over the
-    table's μ and ζ: docs/corrected_law.md)."""
+    error against the solved law is `gw.corrected_law.stated_error(mu)` (relative, the largest
+    measured at the μ around mu: docs/corrected_law.md)."""
 
     def __init__(self, mu, constants=CORRECTED_LAWS, *, name="corrected"):
         self.mu, self.constants, self.name = positive("mu", mu), constants, name

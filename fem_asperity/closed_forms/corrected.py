@@ -16,8 +16,9 @@ Here the same pieces are joined as the solved curves are (units: δ̄o in ε, P�
   compliance, which is what is left at μ → 0), s_m = (3√(2π)/4)^(2/3) where the JKR force is
   least, u_m = s_m² − √(2π s_m) = −0.7734;
 - δ̄J(μ) = 1 + a μ^b and δ̄m(μ) = δ̄J + |u_m| μ − c μ^q: where the approach jumps (below the
-  onset, where it falls steeply) and where the JKR curve is least; both tend to Bradley's
-  minimum δ̄o = 1 as μ → 0.
+  onset, where it falls steeply) and where the JKR curve alone would be least (the force is
+  least at δ̄m + x̄_B(P̄off) − 1, the wall's shift); both tend to Bradley's minimum δ̄o = 1 as
+  μ → 0.
 
 At μ → 0 it is Bradley's curve (the DMT limit, P̄min = −1); at μ → ∞ the approach lands on the
 JKR curve at s³ = 2π, P̄ = −2/3, and follows JKR. Below the jump-in onset (μ ≈ 0.697) the
@@ -37,7 +38,7 @@ S_MIN = (0.75 * np.sqrt(2.0 * np.pi)) ** (2.0 / 3.0)
 U_MIN = S_MIN**2 - np.sqrt(2.0 * np.pi * S_MIN)
 #: Where the JKR δ-term turns (d/ds[s² − √(2πs)] = 0): the contact branch is monotone above it.
 S_TURN = (np.sqrt(2.0 * np.pi) / 4.0) ** (2.0 / 3.0)
-#: Samples of s per law: geometric from S_TURN to S_TURN + S_SPAN, 400 per decade; the GW
+#: Samples of s per law: geometric in s − S_TURN from 1e-6 to S_SPAN (about 390 per decade); the GW
 #: integrals read P̄(δ̄o) off them linearly (test_corrected_law.py checks the curve against a
 #: root find of the parametric form to 1e-4 max(1, |P̄|)).
 SAMPLES, S_SPAN = 4000, 2e4
@@ -72,7 +73,8 @@ class CorrectedLaws:
         return 1.0 + self.a * np.asarray(mu) ** self.b
 
     def minimum_separation(self, mu):
-        """δ̄m [ε]: where the JKR curve's force is least (Wu's pull-off)."""
+        """δ̄m [ε]: where the JKR curve alone would be least (Wu's pull-off); the wall shifts the
+        law's least force to δ̄m + x̄_B(P̄off) − 1."""
         return self.jump_separation(mu) - U_MIN * mu - self.c * np.asarray(mu) ** self.q
 
     def at(self, mu):
@@ -108,8 +110,10 @@ class CorrectedLawAtMu:
         far = flat > self.delta_jump
         out[far] = bradley_force(flat[far])
         deep = np.isnan(out)
-        out[deep] = self._hertz(flat[deep])
-        return finite_result(out.reshape(d.shape), "the corrected law's force")
+        with np.errstate(over="ignore"):  # refused by finite_result
+            out[deep] = self._hertz(flat[deep])
+        return finite_result(out.reshape(d.shape), "the corrected law's force (the Hertz "
+                                                   "compression raised to 3/2)")
 
     def area(self, delta_o):
         """Ā(δ̄o) [εR]: JKR's contact area π ā², zero above the jump."""
@@ -118,8 +122,9 @@ class CorrectedLawAtMu:
         out = np.interp(flat, self._delta, self._area, left=np.nan)
         out[flat > self.delta_jump] = 0.0
         deep = np.isnan(out)  # beyond the deepest sample: Hertz, dĀ/dδ̄o = −π
-        out[deep] = self._area[0] + np.pi * (self._delta[0] - flat[deep])
-        return out.reshape(d.shape)
+        with np.errstate(over="ignore"):  # refused by finite_result
+            out[deep] = self._area[0] + np.pi * (self._delta[0] - flat[deep])
+        return finite_result(out.reshape(d.shape), "the corrected law's area")
 
     def _hertz(self, d):
         """Beyond the deepest sample (s > S_SPAN, P̄ > 1e12): Hertz, P̄ growing like
