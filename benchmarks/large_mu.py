@@ -12,7 +12,7 @@ cores, from an empty store.
 
     python benchmarks/large_mu.py            # minutes → benchmarks/results/large_mu.{md,json}
     python benchmarks/large_mu.py --quick    # μ = 10 draft only → large_mu-quick.*
-    python benchmarks/large_mu.py --tag before   # → large_mu-before.{md,json}, to compare
+    python benchmarks/large_mu.py --tag before   # → large_mu-before.* (git-ignored), to compare
     python benchmarks/large_mu.py --large --tag T # μ = 50 draft and μ = 46.9 default only
 """
 

@@ -125,8 +125,9 @@ METHODS = ("fem", "bem")
 #: curve at the same preset with that curve's own ('finer') estimate; 'auto', 'bem' for the FE
 #: of a homogeneous half-space, else 'finer'. The FE's finer half-space cost 2.5-5.3 times its
 #: curve (its condensation; docs/accuracy-study.md at 9f5dc20, benchmarks/results/
-#: large_mu-tip-after.md), the boundary integral's curve with its estimate about as much as the
-#: FE's curve, alongside it on the second core (benchmarks/results/large_mu-bem-partner-after.md).
+#: large_mu-tip-after.md at b04172e), the boundary integral's curve with its estimate about as
+#: much as the FE's curve, alongside it on the second core (large_mu-bem-partner-after.md at
+#: 1a7ef82; `git show 1a7ef82:benchmarks/results/large_mu-bem-partner-after.md`).
 ESTIMATE_BY = ("auto", "finer", "bem")
 #: The error estimate's finer solve grades the bulk (FE) or tail (BEM) twice as gently, so the
 #: estimate also sees the bulk mesh, which dominates the FE's δ̄oc error at small μ (μ = 0.5: 6e-7
