@@ -81,9 +81,9 @@ def build_parser():
     fmax = commands.add_parser("fmax", help="strength of adhesion F_max and its separation")
     _common(fmax)
     fmax.add_argument("--compare", action="store_true",
-                      help="the paper's law, the refitted law and the solved law (of --law fem "
-                           "or bem; default bem) side by side, with their relative differences "
-                           "and the solved law's interpolation error")
+                      help="the paper's law, the refitted law, the corrected law and the "
+                           "solved law (of --law fem or bem; default bem) side by side, with "
+                           "their relative differences and the solved law's interpolation error")
     fmax.add_argument("--warn-above", type=float,
                       help="--compare warns where the paper's F_max is off the solved law's by "
                            f"more than this fraction (default: {COMPARE_WARNING})")
@@ -205,16 +205,16 @@ def _strength_si(found, scales, args):
 
 
 def _compare(args, mu, surface, scales):
-    """`fmax --compare`: F̄max and its d̃ from the paper's law, the refitted law and the solved law,
-    their differences relative to the solved one, and a warning where the paper's is off by more
-    than --warn-above."""
+    """`fmax --compare`: F̄max and its d̃ from the paper's law, the refitted law, the corrected
+    law and the solved law, their differences relative to the solved one, and a warning where
+    the paper's is off by more than --warn-above."""
     threshold = COMPARE_WARNING if args.warn_above is None else args.warn_above
     method = args.law if args.law in SOLVED else "bem"
     laws = {"paper": PaperLaw(mu)}
     found = {"paper": strength(laws["paper"], surface)}  # its refusals before the long work
-    laws |= {"refit": _law(_with_law(args, "refit"), mu),
+    laws |= {"refit": _law(_with_law(args, "refit"), mu), "corrected": CorrectedLaw(mu),
              "solved": _law(_with_law(args, method), mu)}
-    found |= {name: strength(laws[name], surface) for name in ("refit", "solved")}
+    found |= {name: strength(laws[name], surface) for name in ("refit", "corrected", "solved")}
     solved = found["solved"].f_max
     rows = {name: {"f_max": s.f_max, "d_at_max": s.d_at_max,
                    "relative_to_solved": (s.f_max - solved) / solved}

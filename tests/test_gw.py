@@ -13,7 +13,7 @@ from fem_asperity.closed_forms.laws import PAPER_LAWS
 from fem_asperity.closed_forms.lj import bradley_force
 from fem_asperity.path.curve import curve_from_columns
 from gw.integrate import D_MAX, RATIO_MAX, WINDOW, separation_range, strength, totals
-from gw.laws import PaperLaw, TabulatedLaw
+from gw.laws import CorrectedLaw, PaperLaw, TabulatedLaw
 from gw.surface import MCCOOL_MIN, RoughSurface, height_pdf, omega_mccool, theta, xi
 
 CASES = [(0.1, 0.2, 1.0), (0.3, 0.05, 1.0), (0.49, 1.0, 0.2), (1.0, 6.667, 0.9),
@@ -298,10 +298,11 @@ def test_fmax_below_omega_one_says_how_far_mccools_reading_is(capsys):
     assert "omega_reading" not in json.loads(capsys.readouterr().out)
 
 
-def test_compare_puts_the_three_laws_side_by_side_and_warns(capsys, tmp_path, monkeypatch):
-    """`fmax --compare`: paper, refit and solved F̄max with their differences from the solved one;
-    the paper's equals plain `fmax`; the warning appears where the difference exceeds
-    --warn-above and not otherwise (at μ = 1, ζ = 3 the paper's law is 56% weaker)."""
+def test_compare_puts_the_four_laws_side_by_side_and_warns(capsys, tmp_path, monkeypatch):
+    """`fmax --compare`: paper, refit, corrected and solved F̄max with their differences from the
+    solved one; the paper's and the corrected's equal their own integrals; the warning appears
+    where the difference exceeds --warn-above and not otherwise (at μ = 1, ζ = 3 the paper's
+    law is 56% weaker)."""
     import json
 
     from gw.__main__ import main
@@ -313,8 +314,10 @@ def test_compare_puts_the_three_laws_side_by_side_and_warns(capsys, tmp_path, mo
     assert main(base + ["--compare"]) == 0
     out = capsys.readouterr()
     compared = json.loads(out.out)
-    assert set(compared) >= {"paper", "refit", "solved", "warning"}
+    assert set(compared) >= {"paper", "refit", "corrected", "solved", "warning"}
     assert compared["paper"]["f_max"] == plain["f_max"]
+    assert compared["corrected"]["f_max"] == strength(CorrectedLaw(1.0),
+                                                      RoughSurface(3.0)).f_max
     assert compared["solved"]["relative_to_solved"] == 0.0
     assert 0 < compared["solved"]["law_interpolation_error_of_max_force"] < 0.01
     off = compared["paper"]["f_max"] / compared["solved"]["f_max"] - 1.0
