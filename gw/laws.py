@@ -71,11 +71,11 @@ class CorrectedLaw:
 
     def force(self, delta):
         """P̄(δ̄o) [2πRΔγ] on approach at δ̄o `delta` [ε] (array or scalar)."""
-        return self._at_mu.force(_delta(delta))
+        return self._at_mu.force(delta)  # checks δ̄o and the result itself
 
     def area(self, delta):
         """Ā(δ̄o) [εR] on approach at δ̄o `delta` [ε] (array or scalar)."""
-        return self._at_mu.area(_delta(delta))
+        return self._at_mu.area(delta)
 
 
 class TabulatedLaw:
