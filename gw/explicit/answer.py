@@ -3,13 +3,14 @@ solved whole, their differences, and which model the surface needs. SI throughou
 
 GW and the interacting asperities take the map's summits (`topography.summits`: σ_s, the mean
 summit radius R, η, and for the interacting model each summit's place and height) and the solved
-single-asperity law at the Tabor parameter of R. GW integrates over a Gaussian of the summits'
-own rms height σ_s (ζ = σ_s/ε, ω = 1). GW's d is measured from the summits' mean
-height; here every d is from the map's datum (z = 0), GW's shifted accordingly.
+single-asperity law at the Tabor parameter of R; the interacting model counts the ground
+between the summits once (`tails`, the summits taken as caps of radius R). GW integrates over a
+Gaussian of the summits' own rms height σ_s (ζ = σ_s/ε, ω = 1). GW's d is measured from the
+summits' mean height; here every d is from the map's datum (z = 0), GW's shifted accordingly.
 """
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -20,6 +21,7 @@ from ..integrate import strength, totals
 from ..surface import RoughSurface
 from .compare import settled, within
 from .interacting import AsperityLaw, Interacting, coupling
+from .tails import SharedTails
 from .topography import spectral_summit_statistics, summit_statistics, summits
 from .whole import check_map, most_tensile, solve_whole
 
@@ -177,8 +179,13 @@ def _interacting(topography, found, law, scales, d_grid, unit_force, area, notes
     pixel = topography.pixel / scales.length_r
     k = coupling(found.rows, found.columns, shape=topography.shape, pixel=pixel, mu=scales.mu,
                  periodic=topography.periodic)
-    model = Interacting(found.heights / scales.eps, k, law)
+    heights = found.heights / scales.eps
+    model = Interacting(heights, k, law)
     path, _, _ = model.follow(d_grid / scales.eps)
+    tails = SharedTails.build(found.rows * pixel, found.columns * pixel, heights,
+                              topography.heights / scales.eps, pixel=pixel,
+                              periodic=topography.periodic, separations=d_grid / scales.eps)
+    path = replace(path, force=path.force + [tails.force(d) for d in path.d])
     if path.d.size == 0:
         notes.append("interacting: no equilibrium of the far-field model at the first "
                      "separation (contacts too large or too close for it): left out")

@@ -8,7 +8,10 @@ construction, so the models differ by what each leaves out:
 - `gw_paper`, `gw_solved`: GW's integral over the Gaussian with the paper's law or the solved
   one (no interaction; the Gaussian, not these summits);
 - `gw_sum`: the solved law summed over these summits (their actual heights; no interaction);
-- `interacting`: the same summits coupled by the elastic far field (`interacting`);
+- `gw_cells`: the same sum with the ground between the summits counted once (`tails`: each
+  summit's law is a whole paraboloid's, whose LJ tail reaches over its neighbours' cells);
+- `interacting`: the summits coupled by the elastic far field (`interacting`), the ground
+  counted once as in `gw_cells`;
 - `whole`: the map solved whole (`whole`): the reference.
 
 All in GW's units: F̄ = F/(2πRΔγ N) (N summits on the map: ηA₀ = N; a cap under another is
@@ -28,6 +31,7 @@ from ..integrate import strength, totals
 from ..laws import PaperLaw
 from ..surface import RoughSurface
 from .interacting import AsperityLaw, Interacting, coupling
+from .tails import SharedTails
 from .topography import gaussian_caps
 from .whole import Adhesion, most_tensile, solve_whole
 
@@ -35,7 +39,7 @@ from .whole import Adhesion, most_tensile, solve_whole
 #: the pixel in √(Rε) only, so these fix nothing but the SI numbers in the files.
 EPS, DGAMMA, RADIUS_OVER_EPS = 0.3e-9, 0.05, 1000.0
 #: Models, cheapest first.
-MODELS = ("gw_paper", "gw_solved", "gw_sum", "interacting", "whole")
+MODELS = ("gw_paper", "gw_solved", "gw_sum", "gw_cells", "interacting", "whole")
 #: GW "holds" where its F̄max is within this fraction of the whole surface's.
 HOLDS = 0.10
 
@@ -142,18 +146,18 @@ def compare(scene, *, accuracy="default", law=None, progress=None):
     pixel = topography.pixel / scene.unit
     rows = np.round(caps.x[shown] / topography.pixel).astype(int) % topography.shape[0]
     cols = np.round(caps.y[shown] / topography.pixel).astype(int) % topography.shape[1]
-    for name, scale in (("gw_sum", 0.0), ("interacting", 1.0)):
-        started = time.perf_counter()
-        k = scale * coupling(rows, cols, shape=topography.shape, pixel=pixel, mu=scene.mu,
-                             periodic=scene.periodic)
-        model = Interacting(heights, k, law)
-        up, attached, delta = model.follow(d_eps)
-        down, _, _ = model.follow(up.d[::-1], attached=attached, delta=delta)
-        jumps = (sum(j[0] == "in" for j in up.jumps + down.jumps),
-                 sum(j[0] == "out" for j in up.jumps + down.jumps))
-        models[name] = _curve(up.d / sigma, up.force / count,
-                              _padded(down.force[::-1], up.d.size) / count, jumps,
-                              time.perf_counter() - started, up.stopped)
+    started = time.perf_counter()
+    tails = SharedTails.build(caps.x[shown] / scene.unit, caps.y[shown] / scene.unit, heights,
+                              topography.heights / EPS, pixel=pixel, periodic=scene.periodic,
+                              separations=d_eps)
+    tails_seconds = time.perf_counter() - started
+    k = coupling(rows, cols, shape=topography.shape, pixel=pixel, mu=scene.mu,
+                 periodic=scene.periodic)
+    alone = _summits(Interacting(heights, 0.0 * k, law), d_eps)
+    models["gw_sum"] = _summit_curve(alone, None, sigma, count)
+    models["gw_cells"] = _summit_curve(alone, tails, sigma, count, tails_seconds)
+    models["interacting"] = _summit_curve(_summits(Interacting(heights, k, law), d_eps), tails,
+                                          sigma, count, tails_seconds)
     surface = RoughSurface(zeta=scene.zeta, omega=1.0)
     for name, gw_law in (("gw_paper", PaperLaw(scene.mu)), ("gw_solved", law.approach)):
         started = time.perf_counter()
@@ -198,6 +202,30 @@ def visible(caps, size, periodic):
     above = caps.z[None, :] - (dx**2 + dy**2) / (2 * caps.radius) - caps.z[:, None]
     np.fill_diagonal(above, -np.inf)
     return above.max(axis=1) < 0.0
+
+
+def _summits(model, separations):
+    """(approach, retraction, seconds) of an `Interacting` model through `separations` (ε)
+    and back from where its approach ended."""
+    started = time.perf_counter()
+    up, attached, delta = model.follow(separations)
+    down, _, _ = model.follow(up.d[::-1], attached=attached, delta=delta)
+    return up, down, time.perf_counter() - started
+
+
+def _summit_curve(paths, tails, sigma, count, tails_seconds=0.0):
+    """The `ModelCurve` of `_summits` paths, with `tails` (`SharedTails`) added to the force
+    where given, in GW's units (d̃ = d/σ, F̄ per summit: `count`)."""
+    up, down, seconds = paths
+
+    def force(path):
+        shared = 0.0 if tails is None else np.array([tails.force(d) for d in path.d])
+        return path.force + shared
+
+    jumps = (sum(j[0] == "in" for j in up.jumps + down.jumps),
+             sum(j[0] == "out" for j in up.jumps + down.jumps))
+    return _curve(up.d / sigma, force(up) / count, _padded(force(down)[::-1], up.d.size) / count,
+                  jumps, seconds + tails_seconds, up.stopped)
 
 
 def _padded(values, size):

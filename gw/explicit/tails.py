@@ -1,0 +1,131 @@
+"""The attraction GW counts twice: each summit's law is that of a whole paraboloid, whose LJ
+tail reaches over its neighbours' ground.
+
+The single-asperity law integrates the LJ attraction over an infinite paraboloid. On a surface
+of many summits the ground beyond a summit's own cell belongs to a neighbour (the map is the
+highest of them), whose law counts it again. Taken rigid, what the summits' laws miscount is
+
+    T(d) = Σ_x p̄(d − z(x)) a²/(2π) − Σ_i ∫ p̄(d − z_i + r_i²/2) dA/(2π)
+
+in 2πRΔγ at separation d (ε): the map's LJ force (p̄ in Δγ/ε, z the map in ε, a the pixel in
+√(Rε)) less that of every summit's paraboloid (apex z_i, r in √(Rε)). Where the map is a
+summit's paraboloid (near its apex) the two cancel pixel by pixel, so T is the tails over the
+neighbours' cells (−), and the ground no summit's paraboloid describes (+: caps under another,
+summits not counted, a measured map's own shape). It depends on the summit spacing against the
+LJ range: the gap at a cell's edge is about d − z + s²/8 for summits s √(Rε) apart,
+s² = ζ/(σRη) = 1/(ηRε). It is taken rigid (the gaps of the undeformed map; the elastic lift of
+the ground between summits is the interacting model's far field, not here), and gaps below the
+LJ's most tensile point (h̄ < 3^(1/6): contact) are held there, so that in contact the map and
+the paraboloid cancel, and where contacts merge T counts at most the peak attraction: the model
+does not hold there.
+
+The sums are kept as histograms of q (h = d + q; q = −z on the map, r²/2 − z_i on a
+paraboloid), binned by `Q_STEP` where a gap can come near contact and logarithmically beyond,
+so that T at each d is a sum over the bins. The window of pixels is the map's cell of nearest
+images if periodic, three times the map if free (no ground beyond the map); beyond it the
+paraboloid's tail is φ̄(h) at the window's equal-area radius.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from fem_asperity.closed_forms.lj import scaled_potential, scaled_traction
+from fem_asperity.plumbing.errors import InputError
+
+#: The gap held where a cell's edge comes closer (ε): the LJ 9-3 traction's most tensile point.
+PEAK_GAP = 3.0 ** (1.0 / 6.0)
+#: Bin width of q (ε) where a gap can come within ten ε of the surface; each bin's mean q
+#: stands for its pixels (second order in the width: test_tails.py pins it to the pixels').
+Q_STEP = 0.005
+#: Beyond ten ε of gap, bins grow geometrically by this factor (p̄ ~ h̄⁻³ there).
+Q_GROWTH = 1.02
+#: Gaps beyond which the fine bins stop (ε): p̄(10) is 3e-3 of the peak.
+FINE_REACH = 10.0
+
+
+@dataclass(frozen=True, eq=False)
+class SharedTails:
+    """T(d) of summits on a map (`build`): `q` (bin means, ε) and `weight` (pixels per bin
+    times a²/(2π), + for the map's, − for the paraboloids'), and the summits' heights
+    `z_tail` with the window's equal-area radius squared over two (`beyond`, ε) for the
+    paraboloids' tails beyond the window."""
+
+    q: np.ndarray
+    weight: np.ndarray
+    z_tail: np.ndarray
+    beyond: float
+
+    @classmethod
+    def build(cls, x, y, z, heights, *, pixel, periodic, separations):
+        """Summits at (`x`, `y`) (√(Rε)) with apex heights `z` (ε), each taken as a
+        paraboloid z − r²/2 (the caps of its law), on the map `heights` (ε; pixel (i, j)
+        centred at (i, j) × `pixel` √(Rε), as `gaussian_caps` and `summits` place them).
+        `separations` (ε): the range of d that `force` will be asked at, which sets where the
+        bins must be fine."""
+        x, y, z = (np.asarray(v, dtype=float) for v in (x, y, z))
+        heights = np.asarray(heights, dtype=float)
+        if not (x.shape == y.shape == z.shape) or x.ndim != 1 or not x.size:
+            raise InputError("x, y and z must be 1-D arrays of one length (>= 1)")
+        if heights.ndim != 2 or not np.all(np.isfinite(heights)):
+            raise InputError("heights must be a 2-D map of finite numbers")
+        n0, n1 = heights.shape
+        side = np.array([n0, n1]) * pixel
+        if periodic:
+            rows, cols = np.arange(n0), np.arange(n1)
+        else:  # the map and as much again on each side: no ground there
+            rows, cols = np.arange(-n0, 2 * n0), np.arange(-n1, 2 * n1)
+        gx, gy = rows * pixel, cols * pixel
+        d_lo, d_hi = float(np.min(separations)), float(np.max(separations))
+        reach = float(_squared(gx, gy, 0.0, 0.0, side, periodic).max()) / 2.0
+        lowest = -max(float(z.max()), float(heights.max())) - 1.0
+        edges = _edges(lowest, PEAK_GAP - d_hi, FINE_REACH - d_lo,
+                       reach - min(float(z.min()), float(heights.min())) + 1.0, d_lo)
+        parts = []
+        for sign, fields in ((1.0, [-heights.ravel()]),
+                             (-1.0, (_squared(gx, gy, x[i], y[i], side, periodic).ravel()
+                                     / 2.0 - z[i] for i in range(z.size)))):
+            counts, moments = np.zeros(edges.size - 1), np.zeros(edges.size - 1)
+            for q in fields:
+                index = np.clip(np.searchsorted(edges, q, side="right") - 1, 0, edges.size - 2)
+                counts += np.bincount(index, minlength=edges.size - 1)
+                moments += np.bincount(index, weights=q, minlength=edges.size - 1)
+            used = counts > 0.0
+            parts.append((moments[used] / counts[used], sign * counts[used]))
+        window = gx.size * gy.size * pixel**2  # √(Rε)²
+        return cls(np.concatenate([p[0] for p in parts]),
+                   np.concatenate([p[1] for p in parts]) * pixel**2 / (2.0 * np.pi), z,
+                   window / np.pi / 2.0)
+
+    def force(self, d):
+        """T at separation `d` (ε): F̄ (2πRΔγ, < 0 tensile) to add to the summits' laws'
+        sum so that the ground between them is counted once."""
+        gaps = np.maximum(d + self.q, PEAK_GAP)
+        inside = float(np.dot(self.weight, scaled_traction(gaps)))
+        outside = float(scaled_potential(np.maximum(d - self.z_tail + self.beyond,
+                                                    PEAK_GAP)).sum())
+        return inside - outside
+
+
+def _squared(gx, gy, x0, y0, side, periodic):
+    """r² (√(Rε)²) from (x0, y0) at the pixel centres (gx, gy); to the nearest image if
+    periodic."""
+    dx, dy = gx[:, None] - x0, gy[None, :] - y0
+    if periodic:
+        dx = dx - side[0] * np.round(dx / side[0])
+        dy = dy - side[1] * np.round(dy / side[1])
+    return dx**2 + dy**2
+
+
+def _edges(lowest, fine_lo, fine_hi, highest, d_lo):
+    """Bin edges of q from `lowest` to `highest` (ε): one bin below `fine_lo` (gaps there are
+    held at PEAK_GAP at every separation), Q_STEP up to `fine_hi`, then growing so that the
+    least gap in a bin, q + `d_lo`, grows by Q_GROWTH per bin."""
+    fine_lo, fine_hi = max(fine_lo, lowest), max(fine_hi, fine_lo + Q_STEP)
+    edges = [np.array([lowest])] if lowest < fine_lo else []
+    edges.append(np.arange(fine_lo, fine_hi + Q_STEP, Q_STEP))
+    top = edges[-1][-1]
+    if highest > top:
+        count = int(np.ceil(np.log((highest + d_lo) / (top + d_lo)) / np.log(Q_GROWTH))) + 1
+        edges.append((top + d_lo) * Q_GROWTH ** np.arange(1, count + 1) - d_lo)
+    return np.concatenate(edges)
