@@ -32,6 +32,7 @@ from .explicit import cli as explicit_command
 from .integrate import D_MAX, check_stiffness, separation_range, strength, totals
 from .law_table import TABLE_FILE, TableLaw, shipped_table
 from .laws import CorrectedLaw, PaperLaw
+from .shared_ground import flat_bound
 from .surface import RoughSurface, omega_mccool
 from .tables import solved_law
 
@@ -271,6 +272,9 @@ def _fmax(args, law, surface, scales, head):
     reading = _other_reading(law, surface, found)
     if reading is not None:
         row["omega_reading"] = reading
+    shared = _shared_ground(law, surface, found, _sigma_r_eta(args, scales))
+    if shared is not None:
+        row["shared_ground"] = shared
     if scales is not None:  # physical inputs: the same in SI
         row["si"] = _strength_si(found, scales, args)
     warning = _paper_warning(law, surface, found) if args.law == "paper" else None
@@ -284,15 +288,44 @@ def _fmax(args, law, surface, scales, head):
         if "law_error" in row:
             extra["f_max_law_error"] = row["law_error"]["f_max"]
         print_table([{"quantity": k, "value": v} for k, v in (row | extra).items()
-                     if k not in ("si", "omega_reading", "law_error", "warning")],
+                     if k not in ("si", "omega_reading", "law_error", "warning",
+                                  "shared_ground")],
                     ("quantity", "value"))
     if reading is not None:
         print(f"note: omega = {surface.omega:.4g} < 1: {reading['used']}; "
               f"{reading['other']} gives f_max {reading['f_max_other']:.4g} "
               f"({reading['relative']:+.0%})", file=sys.stderr)
+    if shared is not None:
+        print(f"note: {shared['note']}", file=sys.stderr)
     if warning is not None:
         print(f"warning: {warning}", file=sys.stderr)
     return 0
+
+
+def _sigma_r_eta(args, scales):
+    """σRη where the inputs give it (--sigma-r-eta, or --sigma, R and --density), else None."""
+    if scales is not None:
+        return args.sigma * scales.R * args.density
+    return args.sigma_r_eta
+
+
+def _shared_ground(law, surface, found, sigma_r_eta):
+    """Where σRη is known, GW's F̄max with the ground between summits at random places counted
+    once (`gw.shared_ground`, rigid), how far it is from GW's, and the flat bound no surface
+    with these LJ tractions pulls beyond; None where σRη is not known."""
+    if sigma_r_eta is None:
+        return None
+    once = strength(law, surface, sigma_r_eta=sigma_r_eta)
+    bound = flat_bound(surface.zeta, sigma_r_eta)
+    relative = once.f_max / found.f_max - 1.0
+    note = (f"at sigma R eta = {sigma_r_eta:.3g}, GW counts the ground between summits once "
+            "for every summit whose LJ tail reaches it; counted once (summits at random "
+            f"places, rigid: gw.shared_ground) f_max is {once.f_max:.4g} ({relative:+.0%})")
+    if found.f_max > bound:
+        note += (f"; GW's f_max exceeds {bound:.4g}, the LJ's most tensile traction over the "
+                 "whole nominal area, which no surface can pull beyond")
+    return {"sigma_r_eta": sigma_r_eta, "f_max": once.f_max, "d_at_max": once.d_at_max,
+            "relative": relative, "flat_bound": bound, "note": note}
 
 
 def _table_error(law, f_max=None):

@@ -20,6 +20,7 @@ from scipy.optimize import minimize_scalar
 from fem_asperity.plumbing.checks import in_range, positive
 from fem_asperity.plumbing.errors import InputError
 
+from .shared_ground import shared_ground
 from .surface import height_pdf
 
 #: Heights below −WINDOW/ω are left out, and those above +WINDOW/ω as long as the asperities come
@@ -68,8 +69,10 @@ def _template():
 _NODES, _WEIGHTS = _template()
 
 
-def totals(law, surface, d):
-    """(F̄, S̄) at the mean separations `d` (d̃, in σ; array or scalar) for `law` on `surface`."""
+def totals(law, surface, d, *, sigma_r_eta=None):
+    """(F̄, S̄) at the mean separations `d` (d̃, in σ; array or scalar) for `law` on `surface`.
+    With `sigma_r_eta` (σRη), F̄ counts the ground between summits at random places once
+    (`shared_ground`: a rigid correction; S̄ is GW's)."""
     d = np.atleast_1d(in_range("d", d, -D_MAX, D_MAX)).astype(float)
     zeta, omega = surface.zeta, surface.omega
     check_stiffness(law, surface)
@@ -85,6 +88,8 @@ def totals(law, surface, d):
         weight = (b - a)[:, None] * _WEIGHTS * height_pdf(d[:, None] - delta / zeta, omega) / zeta
         force += np.sum(weight * law.force(delta), axis=1)
         area += np.sum(weight * law.area(delta), axis=1)
+    if sigma_r_eta is not None:
+        force += shared_ground(surface, sigma_r_eta, d)
     return force, area
 
 
@@ -138,7 +143,7 @@ def separation_range(law, surface):
             max(bps) / surface.zeta + WINDOW / surface.omega)
 
 
-def strength(law, surface, *, samples=48):
+def strength(law, surface, *, samples=48, sigma_r_eta=None):
     """F̄max and its d̃: the lowest of `samples` values of F̄ on a d̃ grid over
     `separation_range`, refined by bounded Brent between its grid neighbours (F̄ can have more
     than one local minimum; the grid picks the deepest).
@@ -147,7 +152,7 @@ def strength(law, surface, *, samples=48):
     F̄max above the upper end; a smooth surface, ζ ≪ μ, below the lower one) the grid is extended
     past that end by its first width, at the same spacing, up to EXTENSIONS times. `InputError` if
     F̄max is still not bracketed, if the grid would leave |d̃| < D_MAX, or for ζ/μ or 1/μ beyond
-    RATIO_MAX; F̄max is > 0 and finite otherwise.
+    RATIO_MAX; F̄max is > 0 and finite otherwise. `sigma_r_eta`: as `totals`.
     """
     if samples < 3:
         raise InputError(f"samples must be at least 3; got {samples!r}")
@@ -155,7 +160,7 @@ def strength(law, surface, *, samples=48):
     lo, hi = separation_range(law, surface)
     _check_grid(lo, hi, law, surface)
     grid = np.linspace(lo, hi, samples)
-    f = totals(law, surface, grid)[0]
+    f = totals(law, surface, grid, sigma_r_eta=sigma_r_eta)[0]
     step, width = grid[1] - grid[0], hi - lo
     for extension in range(EXTENSIONS + 1):
         k = _deepest(f)
@@ -169,12 +174,12 @@ def strength(law, surface, *, samples=48):
             )
         new = grid[k] + (1.0 if k else -1.0) * step * np.arange(1, samples)
         _check_grid(new.min(), new.max(), law, surface)
-        f_new = totals(law, surface, new)[0]
+        f_new = totals(law, surface, new, sigma_r_eta=sigma_r_eta)[0]
         if k:
             grid, f = np.concatenate([grid, new]), np.concatenate([f, f_new])
         else:
             grid, f = np.concatenate([new[::-1], grid]), np.concatenate([f_new[::-1], f])
-    best = minimize_scalar(lambda x: totals(law, surface, x)[0][0],
+    best = minimize_scalar(lambda x: totals(law, surface, x, sigma_r_eta=sigma_r_eta)[0][0],
                            bounds=(grid[k - 1], grid[k + 1]), method="bounded",
                            options={"xatol": 1e-10 * max(1.0, abs(width))})
     d_star, f_star = (best.x, best.fun) if best.fun < f[k] else (grid[k], f[k])
