@@ -7,6 +7,8 @@ construction, so the models differ by what each leaves out:
 
 - `gw_paper`, `gw_solved`: GW's integral over the Gaussian with the paper's law or the solved
   one (no interaction; the Gaussian, not these summits);
+- `gw_once`: GW's integral with the solved law and the ground between summits at random places
+  counted once (`gw.shared_ground`, in closed form);
 - `gw_sum`: the solved law summed over these summits (their actual heights; no interaction);
 - `gw_cells`: the same sum with the ground between the summits counted once (`tails`: each
   summit's law is a whole paraboloid's, whose LJ tail reaches over its neighbours' cells);
@@ -39,7 +41,7 @@ from .whole import Adhesion, most_tensile, solve_whole
 #: the pixel in √(Rε) only, so these fix nothing but the SI numbers in the files.
 EPS, DGAMMA, RADIUS_OVER_EPS = 0.3e-9, 0.05, 1000.0
 #: Models, cheapest first.
-MODELS = ("gw_paper", "gw_solved", "gw_sum", "gw_cells", "interacting", "whole")
+MODELS = ("gw_paper", "gw_solved", "gw_once", "gw_sum", "gw_cells", "interacting", "whole")
 #: GW "holds" where its F̄max is within this fraction of the whole surface's.
 HOLDS = 0.10
 
@@ -159,10 +161,12 @@ def compare(scene, *, accuracy="default", law=None, progress=None):
     models["interacting"] = _summit_curve(_summits(Interacting(heights, k, law), d_eps), tails,
                                           sigma, count, tails_seconds)
     surface = RoughSurface(zeta=scene.zeta, omega=1.0)
-    for name, gw_law in (("gw_paper", PaperLaw(scene.mu)), ("gw_solved", law.approach)):
+    for name, gw_law, shared in (("gw_paper", PaperLaw(scene.mu), None),
+                                 ("gw_solved", law.approach, None),
+                                 ("gw_once", law.approach, scene.sigma_r_eta)):
         started = time.perf_counter()
-        best = strength(gw_law, surface)
-        f = totals(gw_law, surface, d_eps / sigma)[0]
+        best = strength(gw_law, surface, sigma_r_eta=shared)
+        f = totals(gw_law, surface, d_eps / sigma, sigma_r_eta=shared)[0]
         models[name] = ModelCurve(d_eps / sigma, f, None, best.f_max, best.d_at_max, None,
                                   (0, 0), time.perf_counter() - started)
     reference = models["whole"].f_max
