@@ -324,6 +324,9 @@ def _shared_ground(law, surface, found, sigma_r_eta):
     if found.f_max > bound:
         note += (f"; GW's f_max exceeds {bound:.4g}, the LJ's most tensile traction over the "
                  "whole nominal area, which no surface can pull beyond")
+    if once.f_max > bound:
+        note += ("; so does the counted-once f_max: each summit's law pulls over more ground "
+                 "than the summit has (GW's premise, summits apart, does not hold)")
     return {"sigma_r_eta": sigma_r_eta, "f_max": once.f_max, "d_at_max": once.d_at_max,
             "relative": relative, "flat_bound": bound, "note": note}
 

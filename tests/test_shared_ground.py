@@ -90,5 +90,12 @@ def test_fmax_counts_the_ground_once_where_sigma_r_eta_is_given(capsys):
     assert shared_row["relative"] == pytest.approx(direct.f_max / row["f_max"] - 1, rel=1e-9)
     assert row["f_max"] > shared_row["flat_bound"] > shared_row["f_max"]
     assert "no surface can pull beyond" in out.err
+    assert "so does the counted-once" not in out.err
+    # μ = 10: JKR contacts larger than each summit's share of the ground, counted once or not
+    assert main(["fmax", "--mu", "10", "--zeta", "0.2", "--sigma-r-eta", "0.05", "--law",
+                 "solved", "--json"]) == 0
+    out = capsys.readouterr()
+    assert json.loads(out.out)["shared_ground"]["f_max"] > flat_bound(0.2, 0.05)
+    assert "so does the counted-once" in out.err
     assert main(["fmax", "--mu", "0.1", "--zeta", "0.2", "--json"]) == 0  # no σRη: nothing
     assert "shared_ground" not in json.loads(capsys.readouterr().out)
