@@ -5,13 +5,14 @@ once is the whole correction."""
 
 import numpy as np
 import pytest
-from scipy.integrate import quad
+from scipy.integrate import dblquad, quad
 
 from fem_asperity.closed_forms.lj import scaled_potential, scaled_traction
 from fem_asperity.plumbing.errors import InputError
 from gw.explicit import Scene, compare
 from gw.explicit.interacting import AsperityLaw
-from gw.explicit.tails import PEAK_GAP, SharedTails
+from gw.explicit.tails import SharedTails
+from gw.shared_ground import CONTACT_GAP
 
 
 def _caps(x, y, z, shape, pixel, periodic, window=False):
@@ -31,22 +32,52 @@ def _caps(x, y, z, shape, pixel, periodic, window=False):
     return np.array(caps)
 
 
+def _attraction(h):
+    """The LJ traction where it pulls (gaps above CONTACT_GAP), zero in contact."""
+    return np.where(h > CONTACT_GAP, scaled_traction(np.maximum(h, CONTACT_GAP)), 0.0)
+
+
 def _pixel_sum(x, y, z, counted, shape, pixel, periodic, d):
     """T(d) pixel by pixel (the map: the highest of all the caps; the summits: those
-    `counted`), without bins or the part beyond the window."""
+    `counted`), without the part beyond the window."""
     def force(field):
-        return scaled_traction(np.maximum(d - field, PEAK_GAP)).sum() * pixel**2 / (2 * np.pi)
+        return _attraction(d - field).sum() * pixel**2 / (2 * np.pi)
 
     ground = _caps(x, y, z, shape, pixel, periodic).max(axis=0)
     paraboloids = _caps(x[counted], y[counted], z[counted], shape, pixel, periodic, True)
     return force(ground) - sum(force(p) for p in paraboloids)
 
 
+def _beyond(x, y, z, shape, pixel, periodic, d):
+    """The summits' paraboloids' attraction beyond the window, by adaptive quadrature over the
+    angle: (1/2π)∫ φ̄(max(d − z + R(θ)²/2, 1)) dθ, R(θ) to the window's edge (the nearest-image
+    cell centred on the summit, or nine maps if free)."""
+    side = np.array(shape) * pixel
+    total = 0.0
+    for xi, yi, zi in zip(x, y, z):
+        centre = np.array([xi, yi])
+        lo, hi = (centre - side / 2, centre + side / 2) if periodic else (
+            -side - pixel / 2, 2 * side - pixel / 2)
+
+        def edge(theta, centre=centre, lo=lo, hi=hi):
+            u = np.array([np.cos(theta), np.sin(theta)])
+            steps = [((hi if c > 0 else lo)[k] - centre[k]) / c for k, c in enumerate(u)
+                     if c != 0]
+            return min(steps)
+
+        total += quad(lambda t, zi=zi, edge=edge: scaled_potential(
+            max(d - zi + edge(t) ** 2 / 2, CONTACT_GAP)), 0, 2 * np.pi, limit=400,
+            points=[np.pi / 4 * k for k in range(1, 8)])[0] / (2 * np.pi)
+    return total
+
+
 @pytest.mark.parametrize("periodic", [True, False])
 def test_the_binned_overlap_is_the_pixel_sum(periodic):
     """Nine caps on a 40² map, one not taken as a summit (as a cap under another is not): T
-    from the bins within 1e-4 of the pixel sum, at separations from far to the first contact
-    and into it; the part beyond the window is the paraboloid's φ̄ there, added apart."""
+    from the bins and rays within 1e-4 of the pixel sum and the quadrature beyond the window,
+    at separations from where the highest apex is 0.5 ε off, in contact already (its pixels
+    fill the one bin below the fine ones: in contact at every separation asked), to 0.6 ε
+    into it."""
     rng = np.random.default_rng(3)
     shape, pixel = (40, 40), 0.25
     x, y = rng.uniform(0, 10, 9), rng.uniform(0, 10, 9)
@@ -54,13 +85,30 @@ def test_the_binned_overlap_is_the_pixel_sum(periodic):
     counted = np.ones(9, bool)
     counted[4] = False
     ground = _caps(x, y, z, shape, pixel, periodic).max(axis=0)
-    separations = np.arange(z.max() + 5.0, z.max() - 0.6, -0.25)
+    separations = np.arange(z.max() + 0.5, z.max() - 0.6, -0.1)
     tails = SharedTails.build(x[counted], y[counted], z[counted], ground, pixel=pixel,
                               periodic=periodic, separations=separations)
     for d in separations:
-        beyond = scaled_potential(np.maximum(d - z[counted] + tails.beyond, PEAK_GAP)).sum()
-        exact = _pixel_sum(x, y, z, counted, shape, pixel, periodic, d) - beyond
+        exact = (_pixel_sum(x, y, z, counted, shape, pixel, periodic, d)
+                 - _beyond(x[counted], y[counted], z[counted], shape, pixel, periodic, d))
         assert tails.force(d) == pytest.approx(exact, rel=1e-4, abs=1e-8)
+
+
+def test_one_cap_loses_its_tail_beyond_its_cell():
+    """One cap in a periodic cell 4 √(Rε) wide: the map within the cell is its paraboloid, so T
+    is the paraboloid's attraction outside the square, φ̄(δ) less the square's (2-D quadrature),
+    taken away (T > 0)."""
+    side, n = 4.0, 40
+    offsets = np.arange(n) * side / n - 2.0
+    ground = -(offsets[:, None] ** 2 + offsets[None, :] ** 2) / 2
+    for delta in (1.2, 1.5, 3.0):
+        tails = SharedTails.build([2.0], [2.0], [0.0], ground, pixel=side / n, periodic=True,
+                                  separations=[delta])
+        square = dblquad(lambda v, u, delta=delta: _attraction(delta + (u * u + v * v) / 2),
+                         -2, 2, -2, 2)[0] / (2 * np.pi)
+        outside = scaled_potential(delta) - square
+        assert tails.force(delta) == pytest.approx(-outside, rel=1e-4)
+        assert tails.force(delta) > 0
 
 
 def test_two_caps_lose_each_others_half_plane():
@@ -86,14 +134,14 @@ def test_two_caps_lose_each_others_half_plane():
 
 
 def test_summits_far_apart_share_nothing():
-    """Two caps 20 √(Rε) apart (diagonally) in a periodic cell 40 wide: their tails over each
-    other's cells are under 1e-3 of one cap's pull-off."""
+    """Two caps 28 √(Rε) apart (diagonally) in a periodic cell 40 wide: what each one's tail
+    reaches over the other's cell is under 1e-3 of one cap's pull-off, at contact and 3 ε off."""
     x = y = np.array([5.0, 25.0])
     z = np.zeros(2)
     ground = _caps(x, y, z, (200, 200), 0.2, True).max(axis=0)
     tails = SharedTails.build(x, y, z, ground, pixel=0.2, periodic=True,
                               separations=[1.0, 4.0])
-    assert abs(tails.force(1.0)) < 1e-3
+    assert abs(tails.force(1.0)) < 1e-3 and abs(tails.force(4.0)) < 1e-3
 
 
 def test_a_nearly_rigid_dense_surface_is_its_summits_counted_once():
@@ -113,6 +161,16 @@ def test_bad_summits_or_maps_are_refused():
     with pytest.raises(InputError, match="1-D arrays of one length"):
         SharedTails.build([0.0, 1.0], [0.0], [0.0, 0.0], ground, pixel=0.2, periodic=True,
                           separations=[1.0])
+    with pytest.raises(InputError, match="pixel"):
+        SharedTails.build([0.0], [0.0], [0.0], ground, pixel=0.0, periodic=True,
+                          separations=[1.0])
+    with pytest.raises(InputError, match="separations"):
+        SharedTails.build([0.0], [0.0], [0.0], ground, pixel=0.2, periodic=True,
+                          separations=[])
+    tails = SharedTails.build([0.0], [0.0], [0.0], ground, pixel=0.2, periodic=True,
+                              separations=[1.0, 2.0])
+    with pytest.raises(InputError, match="within the separations"):
+        tails.force(3.0)  # its bins were laid out for 1 to 2 eps
     ground[3, 3] = np.nan
     with pytest.raises(InputError, match="2-D map of finite numbers"):
         SharedTails.build([0.0], [0.0], [0.0], ground, pixel=0.2, periodic=True,

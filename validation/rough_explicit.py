@@ -265,8 +265,10 @@ def section(summary):
                     "approach ends by)" if len(short) < len(stopped) else "")
                  + ". " if stopped else "")
               + "GW's "
-              "integral differs from the sum over the same summits by the sample alone: "
-              f"with {summits} summits per surface (fewer where a cap covers another) the "
+              "integral (scaled to the summits on the map: it counts every cap drawn) differs "
+              "from the sum over the same summits by the sample and by the caps under others, "
+              "mostly low ones, which GW counts as summits: "
+              f"with {summits} caps per surface (fewer summits where a cap covers another) the "
               f"integral over their Gaussian lies {min(sampling):+.0%} to {max(sampling):+.0%} "
               "off the sum over them, most at large ζ, where F̄max is set by the few highest "
               "summits. So on "

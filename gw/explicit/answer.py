@@ -182,14 +182,14 @@ def _interacting(topography, found, law, scales, d_grid, unit_force, area, notes
     heights = found.heights / scales.eps
     model = Interacting(heights, k, law)
     path, _, _ = model.follow(d_grid / scales.eps)
-    tails = SharedTails.build(found.rows * pixel, found.columns * pixel, heights,
-                              topography.heights / scales.eps, pixel=pixel,
-                              periodic=topography.periodic, separations=d_grid / scales.eps)
-    path = replace(path, force=path.force + [tails.force(d) for d in path.d])
     if path.d.size == 0:
         notes.append("interacting: no equilibrium of the far-field model at the first "
                      "separation (contacts too large or too close for it): left out")
         return None
+    tails = SharedTails.build(found.rows * pixel, found.columns * pixel, heights,
+                              topography.heights / scales.eps, pixel=pixel,
+                              periodic=topography.periodic, separations=d_grid / scales.eps)
+    path = replace(path, force=path.force + [tails.force(d) for d in path.d])
     if path.stopped is not None:
         notes.append(f"interacting: no equilibrium of the far-field model below d = "
                      f"{path.stopped * scales.eps:.4g} m (contacts too large or too close "

@@ -16,9 +16,11 @@ construction, so the models differ by what each leaves out:
   counted once as in `gw_cells`;
 - `whole`: the map solved whole (`whole`): the reference.
 
-All in GW's units: F̄ = F/(2πRΔγ N) (N summits on the map: ηA₀ = N; a cap under another is
-no summit and is left out of the sums, `visible`), d̃ = d/σ from the mean
-height of the Gaussian the summits were drawn from (the map's datum, z = 0).
+All in GW's units: F̄ = F/(2πRΔγ N), N the summits on the map (a cap under another is no
+summit and is left out of the sums, `visible`), d̃ = d/σ from the mean height of the Gaussian
+the summits were drawn from (the map's datum, z = 0). GW's integral counts every cap drawn as a
+summit (ηA₀ caps), so its F̄ is scaled by ηA₀/N: every model's F̄ is its total force over
+2πRΔγ N.
 """
 
 import time
@@ -167,7 +169,9 @@ def compare(scene, *, accuracy="default", law=None, progress=None):
         started = time.perf_counter()
         best = strength(gw_law, surface, sigma_r_eta=shared)
         f = totals(gw_law, surface, d_eps / sigma, sigma_r_eta=shared)[0]
-        models[name] = ModelCurve(d_eps / sigma, f, None, best.f_max, best.d_at_max, None,
+        drawn = caps.z.size / count  # GW's F̄ is per cap drawn: as a total over N summits
+        models[name] = ModelCurve(d_eps / sigma, f * drawn, None, best.f_max * drawn,
+                                  best.d_at_max, None,
                                   (0, 0), time.perf_counter() - started)
     reference = models["whole"].f_max
     estimate = whole.error_estimate["force_max"] / per_summit

@@ -9,21 +9,21 @@ highest of them), whose law counts it again. Taken rigid, what the summits' laws
 
 in 2πRΔγ at separation d (ε): the map's LJ force (p̄ in Δγ/ε, z the map in ε, a the pixel in
 √(Rε)) less that of every summit's paraboloid (apex z_i, r in √(Rε)). Where the map is a
-summit's paraboloid (near its apex) the two cancel pixel by pixel, so T is the tails over the
-neighbours' cells (−), and the ground no summit's paraboloid describes (+: caps under another,
-summits not counted, a measured map's own shape). It depends on the summit spacing against the
-LJ range: the gap at a cell's edge is about d − z + s²/8 for summits s √(Rε) apart,
-s² = ζ/(σRη) = 1/(ηRε). It is taken rigid (the gaps of the undeformed map; the elastic lift of
-the ground between summits is the interacting model's far field, not here), and gaps below the
-LJ's most tensile point (h̄ < 3^(1/6): contact) are held there, so that in contact the map and
-the paraboloid cancel, and where contacts merge T counts at most the peak attraction: the model
-does not hold there.
+summit's paraboloid (near its apex) the two cancel pixel by pixel, so T is made of the
+paraboloids' tails over their neighbours' cells, which it takes away (T > 0: p̄ < 0 there), and
+of the ground no summit's paraboloid describes (caps under another, summits not counted, a
+measured map's own shape), which it adds. It depends on the summit spacing against the LJ range:
+the gap at a cell's edge is about d − z + s²/8 for summits s √(Rε) apart, s² = ζ/(σRη) =
+1/(ηRε). It is taken rigid (the gaps of the undeformed map; the elastic lift of the ground
+between summits is the interacting model's far field, not here), and only the attraction counts:
+gaps below `CONTACT_GAP` (1 ε, where p̄ turns repulsive: contact, each law's own business) are
+left out of both sums, so that contacts that merge add nothing.
 
 The sums are kept as histograms of q (h = d + q; q = −z on the map, r²/2 − z_i on a
 paraboloid), binned by `Q_STEP` where a gap can come near contact and logarithmically beyond,
 so that T at each d is a sum over the bins. The window of pixels is the map's cell of nearest
-images if periodic, three times the map if free (no ground beyond the map); beyond it the
-paraboloid's tail is φ̄(h) at the window's equal-area radius.
+images if periodic, three times the map if free (no ground beyond the map); beyond it each
+paraboloid's tail is (1/2π)∫ φ̄(d − z_i + R(θ)²/2) dθ over the rays to the window's edge.
 """
 
 from dataclasses import dataclass
@@ -31,10 +31,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from fem_asperity.closed_forms.lj import scaled_potential, scaled_traction
+from fem_asperity.plumbing.checks import positive
 from fem_asperity.plumbing.errors import InputError
 
-#: The gap held where a cell's edge comes closer (ε): the LJ 9-3 traction's most tensile point.
-PEAK_GAP = 3.0 ** (1.0 / 6.0)
+from ..shared_ground import CONTACT_GAP
+
+#: Rays per summit for its paraboloid's tail beyond the window of pixels: the window's edge is
+#: straight, so the tail, (1/2π)∫ φ̄(h(R(θ))) dθ, is smooth in θ (test_tails.py: 1e-4 of it).
+ANGLES = 720
 #: Bin width of q (ε) where a gap can come within ten ε of the surface; each bin's mean q
 #: stands for its pixels (second order in the width: test_tails.py pins it to the pixels').
 Q_STEP = 0.005
@@ -47,14 +51,15 @@ FINE_REACH = 10.0
 @dataclass(frozen=True, eq=False)
 class SharedTails:
     """T(d) of summits on a map (`build`): `q` (bin means, ε) and `weight` (pixels per bin
-    times a²/(2π), + for the map's, − for the paraboloids'), and the summits' heights
-    `z_tail` with the window's equal-area radius squared over two (`beyond`, ε) for the
-    paraboloids' tails beyond the window."""
+    times a²/(2π): + the map's, − the paraboloids'), the paraboloids' tails beyond the window
+    as `q_beyond` and `w_beyond` (rays: R(θ)²/2 − z_i, and −1/ANGLES each), and the
+    `separations` (d_lo, d_hi, ε) the bins were laid out for."""
 
     q: np.ndarray
     weight: np.ndarray
-    z_tail: np.ndarray
-    beyond: float
+    q_beyond: np.ndarray
+    w_beyond: np.ndarray
+    separations: tuple
 
     @classmethod
     def build(cls, x, y, z, heights, *, pixel, periodic, separations):
@@ -67,44 +72,76 @@ class SharedTails:
         heights = np.asarray(heights, dtype=float)
         if not (x.shape == y.shape == z.shape) or x.ndim != 1 or not x.size:
             raise InputError("x, y and z must be 1-D arrays of one length (>= 1)")
+        if not np.all(np.isfinite(np.concatenate([x, y, z]))):
+            raise InputError("x, y and z must be finite")
         if heights.ndim != 2 or not np.all(np.isfinite(heights)):
             raise InputError("heights must be a 2-D map of finite numbers")
+        pixel = positive("pixel", pixel)
+        separations = np.asarray(separations, dtype=float)
+        if not separations.size or not np.all(np.isfinite(separations)):
+            raise InputError("separations must be finite numbers, at least one")
         n0, n1 = heights.shape
         side = np.array([n0, n1]) * pixel
-        if periodic:
+        if periodic:  # the nearest images: a cell centred on each summit
             rows, cols = np.arange(n0), np.arange(n1)
+            lo, hi = np.stack([x, y], 1) - side / 2, np.stack([x, y], 1) + side / 2
         else:  # the map and as much again on each side: no ground there
             rows, cols = np.arange(-n0, 2 * n0), np.arange(-n1, 2 * n1)
+            lo = np.broadcast_to(-side - pixel / 2, (x.size, 2))
+            hi = np.broadcast_to(2 * side - pixel / 2, (x.size, 2))
         gx, gy = rows * pixel, cols * pixel
-        d_lo, d_hi = float(np.min(separations)), float(np.max(separations))
+        rays = _rays(np.stack([x, y], 1), lo, hi) ** 2 / 2.0 - z[:, None]
+        d_lo, d_hi = float(separations.min()), float(separations.max())
         reach = float(_squared(gx, gy, 0.0, 0.0, side, periodic).max()) / 2.0
         lowest = -max(float(z.max()), float(heights.max())) - 1.0
-        edges = _edges(lowest, PEAK_GAP - d_hi, FINE_REACH - d_lo,
-                       reach - min(float(z.min()), float(heights.min())) + 1.0, d_lo)
-        parts = []
-        for sign, fields in ((1.0, [-heights.ravel()]),
-                             (-1.0, (_squared(gx, gy, x[i], y[i], side, periodic).ravel()
-                                     / 2.0 - z[i] for i in range(z.size)))):
-            counts, moments = np.zeros(edges.size - 1), np.zeros(edges.size - 1)
-            for q in fields:
-                index = np.clip(np.searchsorted(edges, q, side="right") - 1, 0, edges.size - 2)
-                counts += np.bincount(index, minlength=edges.size - 1)
-                moments += np.bincount(index, weights=q, minlength=edges.size - 1)
-            used = counts > 0.0
-            parts.append((moments[used] / counts[used], sign * counts[used]))
-        window = gx.size * gy.size * pixel**2  # √(Rε)²
-        return cls(np.concatenate([p[0] for p in parts]),
-                   np.concatenate([p[1] for p in parts]) * pixel**2 / (2.0 * np.pi), z,
-                   window / np.pi / 2.0)
+        highest = max(reach - min(float(z.min()), float(heights.min())), float(rays.max()))
+        edges = _edges(lowest, CONTACT_GAP - d_hi, FINE_REACH - d_lo, highest + 1.0, d_lo)
+        ground = _histogram([-heights.ravel()], edges)
+        caps = _histogram((_squared(gx, gy, x[i], y[i], side, periodic).ravel() / 2.0 - z[i]
+                           for i in range(z.size)), edges)
+        beyond = _histogram([rays.ravel()], edges)
+        area = pixel**2 / (2.0 * np.pi)
+        return cls(np.concatenate([ground[0], caps[0]]),
+                   np.concatenate([ground[1], -caps[1]]) * area,
+                   beyond[0], -beyond[1] / ANGLES, (d_lo, d_hi))
 
     def force(self, d):
-        """T at separation `d` (ε): F̄ (2πRΔγ, < 0 tensile) to add to the summits' laws'
-        sum so that the ground between them is counted once."""
-        gaps = np.maximum(d + self.q, PEAK_GAP)
-        inside = float(np.dot(self.weight, scaled_traction(gaps)))
-        outside = float(scaled_potential(np.maximum(d - self.z_tail + self.beyond,
-                                                    PEAK_GAP)).sum())
-        return inside - outside
+        """T at separation `d` (ε, within the `separations` it was built for): F̄ (2πRΔγ,
+        < 0 tensile) to add to the summits' laws' sum so that the ground between them is
+        counted once."""
+        d_lo, d_hi = self.separations
+        if not d_lo - 1e-9 <= d <= d_hi + 1e-9:
+            raise InputError(f"d must be within the separations the tails were built for, "
+                             f"{d_lo:g} to {d_hi:g} eps; got {d!r}")
+        gaps = d + self.q
+        inside = float(np.dot(self.weight, np.where(gaps > CONTACT_GAP,
+                                                    scaled_traction(np.maximum(gaps, 1.0)),
+                                                    0.0)))
+        outside = float(np.dot(self.w_beyond, scaled_potential(
+            np.maximum(d + self.q_beyond, CONTACT_GAP))))
+        return inside + outside
+
+
+def _rays(centres, lo, hi):
+    """For each centre (n × 2) inside its box [lo, hi] (n × 2): the distance to the box's edge
+    along ANGLES rays at equal angles (n × ANGLES)."""
+    theta = (np.arange(ANGLES) + 0.5) * 2.0 * np.pi / ANGLES
+    direction = np.stack([np.cos(theta), np.sin(theta)], 1)  # (ANGLES, 2)
+    with np.errstate(divide="ignore"):
+        reach = np.where(direction[None] > 0, (hi[:, None] - centres[:, None]) / direction[None],
+                         (lo[:, None] - centres[:, None]) / direction[None])
+    return np.min(np.where(direction[None] != 0, reach, np.inf), axis=2)
+
+
+def _histogram(fields, edges):
+    """(mean q, count) of the bins of `edges` that the q of `fields` (arrays) fall in."""
+    counts, moments = np.zeros(edges.size - 1), np.zeros(edges.size - 1)
+    for q in fields:
+        index = np.clip(np.searchsorted(edges, q, side="right") - 1, 0, edges.size - 2)
+        counts += np.bincount(index, minlength=edges.size - 1)
+        moments += np.bincount(index, weights=q, minlength=edges.size - 1)
+    used = counts > 0.0
+    return moments[used] / counts[used], counts[used]
 
 
 def _squared(gx, gy, x0, y0, side, periodic):
