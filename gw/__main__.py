@@ -32,7 +32,7 @@ from .explicit import cli as explicit_command
 from .integrate import D_MAX, check_stiffness, separation_range, strength, totals
 from .law_table import TABLE_FILE, TableLaw, shipped_table
 from .laws import CorrectedLaw, PaperLaw
-from .shared_ground import flat_bound
+from .shared_ground import flat_bound, shared_ground
 from .surface import RoughSurface, omega_mccool
 from .tables import solved_law
 
@@ -207,8 +207,9 @@ def _strength_si(found, scales, args):
 
 def _compare(args, mu, surface, scales):
     """`fmax --compare`: F̄max and its d̃ from the paper's law, the refitted law, the corrected
-    law and the solved law, their differences relative to the solved one, and a warning where
-    the paper's is off by more than --warn-above."""
+    law and the solved law, their differences relative to the solved one, a warning where the
+    paper's is off by more than --warn-above, and where σRη is known the solved law's F̄max
+    with the ground between summits counted once (`_shared_ground`)."""
     threshold = COMPARE_WARNING if args.warn_above is None else args.warn_above
     method = args.law if args.law in SOLVED else "bem"
     laws = {"paper": PaperLaw(mu)}
@@ -230,6 +231,9 @@ def _compare(args, mu, surface, scales):
     warning = (f"the paper's law puts F_max {off:+.1%} off the solved {method.upper()} law (more "
                f"than {threshold:.0%})" if abs(off) > threshold else None)
     out = {"mu": mu, "zeta": surface.zeta, "omega": surface.omega, **rows, "warning": warning}
+    shared = _shared_ground(laws["solved"], surface, found["solved"], _sigma_r_eta(args, scales))
+    if shared is not None:  # for the solved law, the reference here
+        out["shared_ground"] = shared
     if args.json:
         dump_json(out)
     else:
@@ -242,6 +246,8 @@ def _compare(args, mu, surface, scales):
                      for name, row in rows.items()],
                     ("law", "f_max", "d_at_max", "relative_to_solved", LAW_ERROR)
                     + si)
+    if shared is not None:
+        print(f"note: with the solved law, {shared['note']}", file=sys.stderr)
     if warning:
         print(f"warning: {warning}", file=sys.stderr)
     return 0
@@ -400,12 +406,17 @@ def main(argv=None):
     d = np.linspace(lo, hi, args.points)
     force, area = totals(law, surface, d)
     columns = {"d": d, "F": force, "S": area}
+    sigma_r_eta = _sigma_r_eta(args, scales)
+    if sigma_r_eta is not None:  # GW's F̄ with the ground between summits counted once
+        columns["F_once"] = force + shared_ground(surface, sigma_r_eta, d)
     if scales is not None:
         columns |= _si(scales, args, d, force, area)
+        columns["F_once_Pa"] = _si(scales, args, d, columns["F_once"])["F_Pa"]
+    dimensionless = tuple(k for k in ("d", "F", "S", "F_once") if k in columns)
     if args.json:
-        si = ({"si": {k: v.tolist() for k, v in columns.items() if k not in ("d", "F", "S")}}
+        si = ({"si": {k: v.tolist() for k, v in columns.items() if k not in dimensionless}}
               if scales else {})
-        dump_json(head | {k: columns[k].tolist() for k in "dFS"} | si)
+        dump_json(head | {k: columns[k].tolist() for k in dimensionless} | si)
     else:
         print_table([dict(zip(columns, row)) for row in zip(*columns.values())], tuple(columns))
         if "law_error" in head:

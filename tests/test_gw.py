@@ -14,6 +14,7 @@ from fem_asperity.closed_forms.lj import bradley_force
 from fem_asperity.path.curve import curve_from_columns
 from gw.integrate import D_MAX, RATIO_MAX, WINDOW, separation_range, strength, totals
 from gw.laws import CorrectedLaw, PaperLaw, TabulatedLaw
+from gw.shared_ground import shared_ground
 from gw.surface import MCCOOL_MIN, RoughSurface, height_pdf, omega_mccool, theta, xi
 
 CASES = [(0.1, 0.2, 1.0), (0.3, 0.05, 1.0), (0.49, 1.0, 0.2), (1.0, 6.667, 0.9),
@@ -221,6 +222,9 @@ def test_cli_fmax_and_curve_json():
     out = json.loads(done.stdout)
     assert len(out["d"]) == len(out["F"]) == len(out["S"]) == 9
     assert out["omega"] == pytest.approx(omega_mccool(0.05))
+    # σRη given: GW's F̄ with the ground between summits counted once beside it
+    shared = shared_ground(RoughSurface(2.0, out["omega"]), 0.05, np.array(out["d"]))
+    assert np.array(out["F_once"]) == pytest.approx(np.array(out["F"]) + shared, abs=1e-12)
 
 
 @pytest.mark.parametrize("args", [
@@ -302,7 +306,7 @@ def test_compare_puts_the_four_laws_side_by_side_and_warns(capsys, tmp_path, mon
     """`fmax --compare`: paper, refit, corrected and solved F̄max with their differences from the
     solved one; the paper's and the corrected's equal their own integrals; the warning appears
     where the difference exceeds --warn-above and not otherwise (at μ = 1, ζ = 3 the paper's
-    law is 56% weaker)."""
+    law is 56% weaker); with σRη, the solved law's F̄max with the ground counted once."""
     import json
 
     from gw.__main__ import main
@@ -325,6 +329,15 @@ def test_compare_puts_the_four_laws_side_by_side_and_warns(capsys, tmp_path, mon
     assert abs(off) > 0.1 and "paper's law" in compared["warning"] and "warning" in out.err
     assert main(base + ["--compare", "--warn-above", "1"]) == 0
     assert json.loads(capsys.readouterr().out)["warning"] is None
+    assert "shared_ground" not in compared  # no σRη: GW's summits share nothing
+    # with σRη: the solved law's F̄max with the ground counted once, below GW's
+    assert main(base + ["--compare", "--sigma-r-eta", "0.05"]) == 0
+    out = capsys.readouterr()
+    shared = json.loads(out.out)
+    once = shared["shared_ground"]
+    assert once["f_max"] < shared["solved"]["f_max"]
+    assert once["relative"] == pytest.approx(once["f_max"] / shared["solved"]["f_max"] - 1)
+    assert "note: with the solved law" in out.err
 
 
 @pytest.mark.parametrize("args", [
