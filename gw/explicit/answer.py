@@ -189,7 +189,7 @@ def _interacting(topography, found, law, scales, d_grid, unit_force, area, notes
     tails = SharedTails.build(found.rows * pixel, found.columns * pixel, heights,
                               topography.heights / scales.eps, pixel=pixel,
                               periodic=topography.periodic, separations=d_grid / scales.eps)
-    path = replace(path, force=path.force + [tails.force(d) for d in path.d])
+    path = replace(path, force=path.force + tails.along(path.d))
     if path.stopped is not None:
         notes.append(f"interacting: no equilibrium of the far-field model below d = "
                      f"{path.stopped * scales.eps:.4g} m (contacts too large or too close "

@@ -163,13 +163,13 @@ def compare(scene, *, accuracy="default", law=None, progress=None):
     models["interacting"] = _summit_curve(_summits(Interacting(heights, k, law), d_eps), tails,
                                           sigma, count, tails_seconds)
     surface = RoughSurface(zeta=scene.zeta, omega=1.0)
+    drawn = caps.z.size / count  # GW's F̄ is per cap drawn: as a total over N summits
     for name, gw_law, shared in (("gw_paper", PaperLaw(scene.mu), None),
                                  ("gw_solved", law.approach, None),
                                  ("gw_once", law.approach, scene.sigma_r_eta)):
         started = time.perf_counter()
         best = strength(gw_law, surface, sigma_r_eta=shared)
         f = totals(gw_law, surface, d_eps / sigma, sigma_r_eta=shared)[0]
-        drawn = caps.z.size / count  # GW's F̄ is per cap drawn: as a total over N summits
         models[name] = ModelCurve(d_eps / sigma, f * drawn, None, best.f_max * drawn,
                                   best.d_at_max, None,
                                   (0, 0), time.perf_counter() - started)
@@ -227,8 +227,7 @@ def _summit_curve(paths, tails, sigma, count, tails_seconds=0.0):
     up, down, seconds = paths
 
     def force(path):
-        shared = 0.0 if tails is None else np.array([tails.force(d) for d in path.d])
-        return path.force + shared
+        return path.force + (0.0 if tails is None else tails.along(path.d))
 
     jumps = (sum(j[0] == "in" for j in up.jumps + down.jumps),
              sum(j[0] == "out" for j in up.jumps + down.jumps))

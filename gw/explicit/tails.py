@@ -115,11 +115,16 @@ class SharedTails:
                              f"{d_lo:g} to {d_hi:g} eps; got {d!r}")
         gaps = d + self.q
         inside = float(np.dot(self.weight, np.where(gaps > CONTACT_GAP,
-                                                    scaled_traction(np.maximum(gaps, 1.0)),
+                                                    scaled_traction(np.maximum(gaps,
+                                                                               CONTACT_GAP)),
                                                     0.0)))
         outside = float(np.dot(self.w_beyond, scaled_potential(
             np.maximum(d + self.q_beyond, CONTACT_GAP))))
         return inside + outside
+
+    def along(self, separations):
+        """`force` at each of `separations` (ε), as an array."""
+        return np.array([self.force(d) for d in separations])
 
 
 def _rays(centres, lo, hi):
@@ -156,8 +161,8 @@ def _squared(gx, gy, x0, y0, side, periodic):
 
 def _edges(lowest, fine_lo, fine_hi, highest, d_lo):
     """Bin edges of q from `lowest` to `highest` (ε): one bin below `fine_lo` (gaps there are
-    held at PEAK_GAP at every separation), Q_STEP up to `fine_hi`, then growing so that the
-    least gap in a bin, q + `d_lo`, grows by Q_GROWTH per bin."""
+    below CONTACT_GAP, left out, at every separation), Q_STEP up to `fine_hi`, then growing so
+    that the least gap in a bin, q + `d_lo`, grows by Q_GROWTH per bin."""
     fine_lo, fine_hi = max(fine_lo, lowest), max(fine_hi, fine_lo + Q_STEP)
     edges = [np.array([lowest])] if lowest < fine_lo else []
     edges.append(np.arange(fine_lo, fine_hi + Q_STEP, Q_STEP))
