@@ -3,7 +3,9 @@
 What is measured (one at a time on an otherwise idle machine): curves through `solve_curve` (the
 median of REPEATS runs where one is short), the BEM `default` curve at μ = 10 alone and with its
 error estimate, the BEM `default` curve at μ = 5.7 with its estimate (the uniform grid's worst
-ratio of estimate to solve before issue 19), the BEM `draft` curve at μ = 20, and the FE
+ratio of estimate to solve before issue 19), the BEM `draft` curve at μ = 20, `draft` curves
+with estimates either side of the BEM's edge-following threshold (issue 44's cost spike at
+μ ≈ 5.8), and the FE
 `default` curves at μ = 5 (grids that follow the edge) and μ = 1 (the whole surface) alone and
 with their estimates; for each, the wall time, points and Newton iterations, and the events, so
 that a faster commit can be checked to give the same events within their estimates. Then the
@@ -34,6 +36,11 @@ RUNS = (("BEM default, mu = 10", 10.0, "bem", "default", False),
         ("BEM default, mu = 5.7", 5.7, "bem", "default", False),
         ("BEM default, mu = 5.7, with estimate", 5.7, "bem", "default", True),
         ("BEM draft, mu = 20", 20.0, "bem", "draft", False),
+        # either side of MU_TRACKING["bem"] and the former spike below the old threshold 6
+        ("BEM draft, mu = 3.9, with estimate", 3.9, "bem", "draft", True),
+        ("BEM draft, mu = 4, with estimate", 4.0, "bem", "draft", True),
+        ("BEM draft, mu = 5.8, with estimate", 5.8, "bem", "draft", True),
+        ("BEM draft, mu = 7.1, with estimate", 7.1, "bem", "draft", True),
         ("FE default, mu = 5", 5.0, "fem", "default", False),
         ("FE default, mu = 5, with estimate", 5.0, "fem", "default", True),
         ("FE default, mu = 1", 1.0, "fem", "default", False),

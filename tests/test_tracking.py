@@ -10,7 +10,7 @@ from fem_asperity import InputError
 from fem_asperity.closed_forms.lj import scaled_traction_slope
 from fem_asperity.path.grids import edge_grid, spring_ratio
 from fem_asperity.solver.output import state_fields
-from fem_asperity.solver.presets import discretisation
+from fem_asperity.solver.presets import MU_TRACKING, discretisation
 from fem_asperity.solver.solve import solve_curve, solve_discretised
 
 
@@ -70,6 +70,20 @@ def test_tracked_grids_give_the_uniform_grids_events(mu5):
     assert tracked["x_oc"] == pytest.approx(uniform["x_oc"], rel=1e-4)
     assert tracked["delta_oc"] == pytest.approx(uniform["delta_oc"], rel=5e-3)
     assert tracked["a_c"] == pytest.approx(uniform["a_c"], rel=2e-3)
+
+
+def test_tracked_grids_from_the_bem_threshold_give_the_uniform_grids_events():
+    """At MU_TRACKING["bem"] (`draft`, the tracked grids as they are by default): measured
+    P̄max and P̄off 2.6e-6 apart, the jumps' δ̄o 4e-7 and 4e-9, ā_c 7.8e-4."""
+    mu = MU_TRACKING["bem"]
+    uniform, tracked = (solve_discretised(mu, discretisation(mu, "draft", method="bem",
+                                                             track_edge=edge)).events.records()
+                        for edge in (False, True))
+    for key in ("p_max", "p_off", "delta_jump_in", "p_jump_after", "delta_jump_out"):
+        assert tracked[key] == pytest.approx(uniform[key], rel=1e-5), key
+    assert tracked["a_c"] == pytest.approx(uniform["a_c"], rel=2e-3)
+    assert discretisation(mu, "draft", method="bem") == discretisation(
+        mu, "draft", method="bem", track_edge=True)
 
 
 @pytest.mark.slow

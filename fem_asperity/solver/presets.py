@@ -56,16 +56,20 @@ FE_GRADING = 0.2
 #: From MU_TRACKING[method] on the surface problem runs on grids that follow the contact edge
 #: (`path.grids`), where a uniform grid fine enough for the edge (n ∝ μ² nodes) outgrows the
 #: grids' overhead: fine (h_surface; on the FE every surface node) within BAND_COHESIVE μ^(−3/2)
-#: of the contact radius and of the crack tip, at most H_INSIDE inside the contact. BEM from 6:
-#: at μ = 5 they give the uniform grid's events, test_tracking.py::
-#: test_tracked_grids_give_the_uniform_grids_events (slow). FE from 5 (its surface restricted
-#: to the grids, `solids.fe.RestrictedSurface`): `default` at μ = 4.5, 5, 5.5 and 7 moved a
+#: of the contact radius and of the crack tip, at most H_INSIDE inside the contact. BEM from 4,
+#: where the uniform grid stops being the cheaper at `draft` and `default` (below, the grids'
+#: overhead is the larger; above, the uniform grid's cost grows steeply: from the former 6 it
+#: made a cost spike just below the threshold); they give the uniform grid's events at μ = 4
+#: (`draft`) and 5 (`default`), test_tracking.py::test_tracked_grids_give_the_uniform_grids_
+#: events and ::test_tracked_grids_from_the_bem_threshold_give_the_uniform_grids_events.
+#: FE from 5 (its surface restricted to the grids, `solids.fe.RestrictedSurface`): `default`
+#: at μ = 4.5, 5, 5.5 and 7 moved a
 #: state to a new grid with |ΔP̄| ≤ 8.2e-6, and at μ = 5 its events agree with the whole
 #: surface's within their error estimates, test_tracking.py::
 #: test_fe_on_grids_that_follow_the_edge_gives_the_whole_surfaces_events; at μ = 4 a move
 #: changed P̄ by 4.1e-4 and at μ = 3 a landing found no state on a grid that fits it (those
 #: other μ measured with the pre-contact grid at H_MAX_BEM, before it held every node).
-MU_TRACKING = {"bem": 6.0, "fem": 5.0}
+MU_TRACKING = {"bem": 4.0, "fem": 5.0}
 BAND_COHESIVE, H_INSIDE = 8.0, 0.1
 #: A band holds at most BAND_ELEMENTS elements of the ripple-free size (RIPPLE_FREE μ^(−2) /
 #: RIPPLE_MARGIN, which sets the BEM `default`'s edge elements from μ ≈ 18 on, `draft`'s from
@@ -318,6 +322,23 @@ def _homogeneous(solid):
 def jkr_radius(load, mu):
     """JKR contact radius ā at the force P̄ = `load` (≥ −3/4 ... any compressive value), in √(Rε)."""
     return ((1.5 * np.pi) * mu**1.5 * (load + 1.5 + np.sqrt(3.0 * load + 2.25))) ** (1.0 / 3.0)
+
+
+#: The cost of one curve relative to one at small μ: about flat up to COST_KNEE, then growing
+#: as μ^COST_POWER[method] (the cohesive zone narrows; the BEM's grids follow it from
+#: `MU_TRACKING`, the FE's surface grows faster). Read off the wall times of the stored BEM and
+#: FE sweeps over μ = 0.01-50 (the commit message has them). A sweep (`studies.sweep`) weighs
+#: its progress by it, so that its time left is not extrapolated from the cheap curves, and
+#: hands out its curves costliest first, so that no worker is left alone with a large μ at the
+#: end. test_sweep.py::test_the_time_left_weighted_by_cost_is_nearer_than_by_count checks it
+#: against measured wall times.
+COST_KNEE, COST_POWER = 2.0, {"bem": 1.5, "fem": 2.5}
+
+
+def relative_cost(mu, method, solid=Solid()):
+    """Expected wall time of the curve at `mu` (sized for `solid`: `sizing_mu`) relative to one
+    at small μ with the same method."""
+    return 1.0 + (sizing_mu(mu, solid) / COST_KNEE) ** COST_POWER[method]
 
 
 def sizing_mu(mu, solid=Solid()):

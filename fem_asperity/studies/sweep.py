@@ -37,6 +37,7 @@ from ..plumbing.errors import InputError
 from ..plumbing.files import staged_folder, writable_folder, write_atomic
 from ..plumbing.version import __version__
 from ..solids.fe import Solid
+from ..solver.presets import relative_cost
 from ..solver.result import PATH_COLUMNS, path_rows
 from ..solver.solve import solvable_mu, solve_curve
 from .store import (
@@ -402,8 +403,8 @@ def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, estimat
     processes on this machine (default: one per core); scheduler: address of a Dask scheduler
     instead ('tcp://host:8786').
     cache: the store's folder (default $ADHESION_CACHE). progress: callable(fraction of the
-    curves to solve that are done), called as each finishes. scales: the `Scales` the μ came
-    from (physical inputs), for SI columns in the events.
+    work done), called as each curve finishes, each weighted by its `relative_cost`. scales:
+    the `Scales` the μ came from (physical inputs), for SI columns in the events.
     """
     if getattr(multiprocessing.current_process(), "_inheriting", False):
         # a worker importing the caller's script, which calls sweep at its top level: without
@@ -424,17 +425,18 @@ def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, estimat
                                 error_estimate=error_estimate, estimate_by=estimate_by,
                                 cache=cache) for mu in mus}
     stored = {mu: load_stored(folders[mu]) for mu in mus}
-    todo = [mu for mu in mus if stored[mu] is None]
+    cost = {mu: relative_cost(mu, method, solid) for mu in mus}
+    todo = sorted((mu for mu in mus if stored[mu] is None), key=cost.get, reverse=True)
     if todo:  # before solving; a store that holds every μ is only read (it may be read-only)
         writable_folder(cache or cache_dir(), STORE)
-    failures, solved = {}, 0
+    failures, solved, done = {}, 0, 0.0
     args = (method, accuracy, error_estimate, solid, estimate_by)
 
     def run(batch):
         return (_cluster_jobs(scheduler, batch, args) if scheduler is not None
                 else _local_jobs(int(jobs), batch, args))
 
-    for done, (mu, result) in enumerate(_unclaimed(todo, folders, run), 1):
+    for mu, result in _unclaimed(todo, folders, run):
         if isinstance(result, BaseException):
             failures[mu] = f"{type(result).__name__}: {result}"
         else:
@@ -442,8 +444,9 @@ def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, estimat
                 keep(result, folders[mu])
                 solved += 1
             stored[mu] = load_stored(folders[mu])
+        done += cost[mu]
         if progress is not None:
-            progress(done / len(todo))
+            progress(done / sum(cost[m] for m in todo))
     rows = []
     for mu in mus:
         if mu in failures:
