@@ -22,7 +22,7 @@ from fem_asperity.closed_forms.physical_arguments import (
     physical_scales,
 )
 from fem_asperity.plumbing.checks import in_range
-from fem_asperity.plumbing.cli import Parser, ProgressBar, dump_json, print_table, run
+from fem_asperity.plumbing.cli import Parser, ProgressBar, dump_json, print_table, run, shown
 from fem_asperity.solver.presets import PRESETS
 from fem_asperity.solver.solve import solvable_mu
 from fem_asperity.studies.refit import stored_refit
@@ -181,7 +181,10 @@ def _law(args, mu):
         return CorrectedLaw(mu)
     accuracy = args.accuracy or "default"
     if args.law == "refit":
-        fit = stored_refit(accuracy=accuracy, announce=partial(print, file=sys.stderr))
+        with shown(partial(ProgressBar, time_left=True), "refit's curves (stored for next "
+                   "time)") as bar:
+            fit = stored_refit(accuracy=accuracy, announce=partial(print, file=sys.stderr),
+                               progress=bar)
         return PaperLaw(mu, fit.laws, name="refit")
     bar = ProgressBar(f"{args.law.upper()} curve mu={mu:g} (stored for next time)")
     law = solved_law(mu, method=args.law, accuracy=accuracy, progress=bar)

@@ -103,7 +103,13 @@ def test_validation_all_writes_its_files(tmp_path, monkeypatch, capsys):
     # estimates costs minutes at μ = 3-5.
     assert main(["all", "--out", str(out), "--json", "--compare-mu", "1", "--accuracy", "draft",
                  "--method", "bem"]) == 0
-    summary = json.loads(capsys.readouterr().out)
+    captured = capsys.readouterr()
+    summary = json.loads(captured.out)
+    for bar in ("BEM sweep [", "refit [", "homogeneous limits [", "FE checks ["):
+        # each long step shows its progress (a cold store; the solved law at μ = 1 is the
+        # BEM sweep's curve, read, so it shows none)
+        assert any(line.startswith("  " + bar) and line.endswith("100%")
+                   for line in captured.err.splitlines()), bar
     assert sorted(p.name for p in out.iterdir()) == [
         RECORD, "law_comparison.png", "layered", "paper_laws.json", "paper_laws.png", "report.md",
         "rough_explicit", "rough_surface.json", "rough_surface.md", "rough_surface.png",
@@ -676,3 +682,30 @@ def test_a_curve_as_a_dataframe_in_si():
     np.testing.assert_allclose(frame["a_c_m"], frame["a_c"] * scales.length_r, rtol=1e-12)
     assert "piezo_m" not in frame  # displacement control: no cantilever
     assert "force_N" not in result.to_dataframe()
+
+
+def test_a_step_shows_its_bar_only_if_it_moved_and_a_part_reports_its_share():
+    import io
+
+    from fem_asperity.plumbing.cli import ProgressBar, share, shown
+
+    streams = []
+
+    def bars(label):
+        streams.append(io.StringIO())
+        return ProgressBar(label, stream=streams[-1])
+
+    with shown(None, "nothing") as bar:
+        assert bar is None
+    with shown(bars, "read from the store"):
+        pass
+    with shown(bars, "solved") as bar:
+        share(bar, 0.5, 1.0)(0.5)
+    assert streams[0].getvalue() == ""
+    assert streams[1].getvalue().splitlines() == ["solved [######################........]  75%",
+                                                  "solved [##############################] 100%"]
+    assert share(None, 0.0, 1.0) is None
+    with pytest.raises(RuntimeError), shown(bars, "failed") as bar:
+        bar(0.2)
+        raise RuntimeError
+    assert not streams[2].getvalue().rstrip().endswith("100%")

@@ -231,11 +231,12 @@ def test_pull_off_bracketing_and_jump_classification():
     assert edge["bracketed"] is True and edge["jump"] == "as substrate"
 
 
-def test_validation_layered_on_a_one_point_map(tmp_path, monkeypatch):
+def test_validation_layered_on_a_one_point_map(tmp_path, monkeypatch, capsys):
     """`python -m validation layered` end to end on a one-point map (μ = 1, t = 1, M = 0.5, draft):
     files written, the FE and the layered BEM agree within their estimates, and both put the
     pull-off of this soft layer outside the two homogeneous limits (more tensile than the
-    substrate's, -0.8353, and the layer's, -0.8041: -0.8623 when this was written)."""
+    substrate's, -0.8353, and the layer's, -0.8041: -0.8623 when this was written). Each long
+    step shows its progress; a second run solves nothing (the FE check was solved every run)."""
     from validation import layered
     from validation.__main__ import main
 
@@ -256,3 +257,16 @@ def test_validation_layered_on_a_one_point_map(tmp_path, monkeypatch):
     assert check["fem"]["events"]["p_off"] < row["substrate"]["p_off"]
     rough = summary["coated_rough_surface"][0]
     assert rough["f_max_coated"] > 0 and "Layered media" in (folder / "report.md").read_text()
+    err = capsys.readouterr().err
+    for bar in ("homogeneous limits [", "1 layers [", "FE checks ["):
+        assert any(bar in line and line.endswith("100%") for line in err.splitlines()), bar
+    import fem_asperity.studies.store as store
+
+    def solve_again(*args, **kwargs):
+        raise AssertionError("solved again")
+
+    monkeypatch.setattr(store, "solve_curve", solve_again)
+    assert main(["layered", "--accuracy", "draft", "--out", str(tmp_path / "again")]) == 0
+    again = json.loads((tmp_path / "again" / "layered" / "layered.json").read_text())
+    assert again["fe_checks"] == summary["fe_checks"]
+    assert "FE checks [" not in capsys.readouterr().err

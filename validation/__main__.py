@@ -17,7 +17,7 @@ from pathlib import Path
 
 from fem_asperity.closed_forms.laws import PAPER_LAWS
 from fem_asperity.plumbing.checks import positive
-from fem_asperity.plumbing.cli import Parser, dump_json, run
+from fem_asperity.plumbing.cli import Parser, ProgressBar, dump_json, run
 from fem_asperity.plumbing.files import output_folder, save_figure, staged_folder, write_atomic
 from fem_asperity.plumbing.provenance import git_commit
 from fem_asperity.solver.presets import PRESETS
@@ -132,12 +132,17 @@ def _step(i, text, total):
     print(f"[{i}/{total}] {text}", file=sys.stderr, flush=True)
 
 
+def _bar(label):
+    """The progress bar of a long step inside a stage (on stderr, with the time left)."""
+    return ProgressBar(f"  {label}", time_left=True)
+
+
 def _rough(out, args, first_step, total):
     """Run the rough-surface stage; returns (its full results, the summary's part of them)."""
     steps = iter(range(first_step, first_step + 2))
     rough = run_rough_surface(out, compare_mu=args.compare_mu, accuracy=args.accuracy,
                               refit_method=args.refit_method,
-                              step=lambda text: _step(next(steps), text, total))
+                              step=lambda text: _step(next(steps), text, total), bars=_bar)
     return rough, {"rough_surface": rough["verdicts"],
                    "rough_surface_solved_law": rough["solved"]["verdicts"],
                    "law_comparison": rough["law_comparison"]}
@@ -148,7 +153,7 @@ def _single(out, args, first_step, total):
     steps = iter(range(first_step, first_step + 2))
     single = run_single_asperity(out, method=args.method, accuracy=args.accuracy, jobs=args.jobs,
                                  scheduler=args.scheduler,
-                                 step=lambda text: _step(next(steps), text, total))
+                                 step=lambda text: _step(next(steps), text, total), bars=_bar)
     return single, {"single_asperity": single["verdicts"], "mu_onset": single["mu_onset"],
                     "refit": single["refit"]}
 
@@ -160,7 +165,7 @@ def _layered(out, args, first_step, total, command):
     steps = iter(range(first_step, first_step + 2))
     layered = run_layered(out, accuracy=args.accuracy, jobs=args.jobs, scheduler=args.scheduler,
                           step=lambda text: _step(next(steps), text, total),
-                          header=provenance(command))
+                          header=provenance(command), bars=_bar)
     return layered, {"layered": {k: layered[k] for k in ("not_bracketed", "jump_created",
                                                          "jump_removed", "failed")}}
 

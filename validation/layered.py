@@ -23,9 +23,10 @@ from dataclasses import asdict
 
 import numpy as np
 
+from fem_asperity.plumbing.cli import share, shown
 from fem_asperity.plumbing.files import save_figure, write_atomic
 from fem_asperity.solids.fe import Solid
-from fem_asperity.solver.solve import solve_curve
+from fem_asperity.studies.store import stored_curve
 from fem_asperity.studies.sweep import sweep
 from gw import RoughSurface, solved_law, strength
 
@@ -58,29 +59,36 @@ def _events(row):
             "delta_jump_in": e.jump_in.delta if e.jump_in else None, "status": row.status}
 
 
-def run_map(*, accuracy="default", jobs=None, scheduler=None, step=print):
-    """The layered curves over the map and the homogeneous limits: (rows, cost)."""
+def run_map(*, accuracy="default", jobs=None, scheduler=None, step=print, bars=None):
+    """The layered curves over the map and the homogeneous limits: (rows, cost). bars: as
+    `run`'s."""
     start = time.perf_counter()
     limits = sorted(set(MUS) | {mu * m ** (-2.0 / 3.0) for mu in MUS for m in RATIOS})
     step(f"layered: homogeneous limits at {len(limits)} mu, then {len(THICKNESSES) * len(RATIOS)} "
          f"layers x {len(MUS)} mu (BEM, {accuracy}, with error estimates)")
-    homogeneous = sweep(limits, method="bem", accuracy=accuracy, jobs=jobs, scheduler=scheduler)
+    with shown(bars, "homogeneous limits") as bar:
+        homogeneous = sweep(limits, method="bem", accuracy=accuracy, jobs=jobs,
+                            scheduler=scheduler, progress=bar)
     limit = {row.mu: _events(row) for row in homogeneous.rows}
 
     def at(mu):
         return limit[min(limit, key=lambda m: abs(m - mu))]
 
     rows, solved = [], homogeneous.solved
-    for t in THICKNESSES:
-        for m in RATIOS:
-            layered = sweep(MUS, method="bem", accuracy=accuracy, solid=_solid(t, m), jobs=jobs,
-                            scheduler=scheduler)
-            solved += layered.solved
-            for row in layered.rows:
-                rows.append({"mu": row.mu, "thickness": t, "modulus_ratio": m,
-                             "layered": _events(row), "substrate": at(row.mu),
-                             "layer": at(row.mu * m ** (-2.0 / 3.0)),
-                             "mu_layer": row.mu * m ** (-2.0 / 3.0)})
+    layers = [(t, m) for t in THICKNESSES for m in RATIOS]
+    with shown(bars, f"{len(layers)} layers") as bar:
+        sweeps = {}
+        for k, (t, m) in enumerate(layers):
+            sweeps[t, m] = sweep(MUS, method="bem", accuracy=accuracy, solid=_solid(t, m),
+                                 jobs=jobs, scheduler=scheduler,
+                                 progress=share(bar, k / len(layers), (k + 1) / len(layers)))
+    for (t, m), layered in sweeps.items():
+        solved += layered.solved
+        for row in layered.rows:
+            rows.append({"mu": row.mu, "thickness": t, "modulus_ratio": m,
+                         "layered": _events(row), "substrate": at(row.mu),
+                         "layer": at(row.mu * m ** (-2.0 / 3.0)),
+                         "mu_layer": row.mu * m ** (-2.0 / 3.0)})
     for r in rows:
         r.update(_judged(r))
     return rows, {"curves_solved": solved, "wall_s": time.perf_counter() - start}
@@ -122,19 +130,23 @@ def coated_rough_surface(accuracy="default"):
     return found
 
 
-def fe_checks(accuracy="default"):
-    """The FE and the layered boundary integral at each point of FE_CHECKS: events, estimates,
-    cost and whether they agree within the sum of the estimates."""
+def fe_checks(accuracy="default", progress=None):
+    """The FE and the layered boundary integral at each point of FE_CHECKS (solved once, then
+    stored): events, estimates, cost and whether they agree within the sum of the estimates.
+    progress: callable(fraction of the curves done), told while one is solved."""
     checks = []
-    for mu, t, m in FE_CHECKS:
+    for i, (mu, t, m) in enumerate(FE_CHECKS):
         found = {}
-        for method in ("fem", "bem"):
-            result = solve_curve(mu, method=method, accuracy=accuracy, solid=_solid(t, m))
-            found[method] = {"events": {k: result.records()[k] for k in
+        for j, method in enumerate(("fem", "bem")):
+            k, n = 2 * i + j, 2 * len(FE_CHECKS)
+            result = stored_curve(mu, method=method, accuracy=accuracy, solid=_solid(t, m),
+                                  error_estimate=True, progress=share(progress, k / n,
+                                                                      (k + 1) / n))
+            found[method] = {"events": {k: result.events.records()[k] for k in
                                         ("p_off", "delta_oc", "a_c", "delta_jump_in",
                                          "delta_jump_out")},
-                             "error_estimate": result.error_estimate, "wall_s": result.wall_s,
-                             "status": result.status}
+                             "error_estimate": result.error_estimate,
+                             "wall_s": result.cost["wall_s"], "status": result.status}
         fe, bem = found["fem"], found["bem"]
         found["agree"] = {k: None if fe["events"][k] is None or bem["events"][k] is None
                           else abs(fe["events"][k] - bem["events"][k])
@@ -186,16 +198,20 @@ def _edges(values):
     return np.exp(np.concatenate([[v[0] - half[0]], v[:-1] + half, [v[-1] + half[-1]]]))
 
 
-def run(out, *, accuracy="default", jobs=None, scheduler=None, step=print, header=""):
+def run(out, *, accuracy="default", jobs=None, scheduler=None, step=print, header="",
+        bars=None):
     """Maps, limits, coated rough surface and the FE check; write out/layered/{report.md (after
-    `header`, e.g. the provenance line), layered.json, map.png}. Returns the summary (the
+    `header`, e.g. the provenance line), layered.json, map.png}. bars: callable(label) giving
+    the progress bar of each long step (`ProgressBar`), or None. Returns the summary (the
     JSON)."""
     folder = out / "layered"
-    rows, cost = run_map(accuracy=accuracy, jobs=jobs, scheduler=scheduler, step=step)
+    rows, cost = run_map(accuracy=accuracy, jobs=jobs, scheduler=scheduler, step=step,
+                         bars=bars)
     step("layered: coated rough surface (GW) and the FE against the layered BEM")
     start = time.perf_counter()
     rough = coated_rough_surface(accuracy)
-    checks = fe_checks(accuracy)
+    with shown(bars, "FE checks") as bar:
+        checks = fe_checks(accuracy, progress=bar)
     cost["rough_and_fe_wall_s"] = time.perf_counter() - start
     save_figure(figure(rows), folder / "map.png")
     summary = {"accuracy": accuracy, "mu": list(MUS), "thickness": list(THICKNESSES),

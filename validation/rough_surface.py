@@ -13,8 +13,10 @@ from functools import partial
 import numpy as np
 
 from fem_asperity.closed_forms.laws import PAPER_LAWS
+from fem_asperity.plumbing.cli import shown
 from fem_asperity.plumbing.files import save_figure, write_atomic
 from fem_asperity.studies.refit import stored_refit
+from fem_asperity.studies.store import stored_curves
 from gw.integrate import strength, totals
 from gw.law_table import shipped_table
 from gw.laws import PaperLaw
@@ -99,8 +101,7 @@ def omega_sensitivity():
             for w in (0.5, 0.8, 1.0)}
 
 
-def law_comparison(mus, refitted, *, method="bem", accuracy="default", sigmas=(0.5, 1.0, 2.0),
-                   progress=None):
+def law_comparison(mus, refitted, *, method="bem", accuracy="default", sigmas=(0.5, 1.0, 2.0)):
     """Paper law vs the tabulated solved law at each μ and σ: F̄max of both, the largest |ΔF̄|
     where either F̄ is adhesive (< 0) and the largest |ΔS̄|/max S̄, over d̃ ∈ [0, 8], with where
     they occur (below d̃ = 0 the repulsive Hertz parts dominate both). `refitted`: the
@@ -108,7 +109,7 @@ def law_comparison(mus, refitted, *, method="bem", accuracy="default", sigmas=(0
     rows = []
     d = np.linspace(0.0, 8.0, 161)
     for mu in mus:
-        law = solved_law(mu, method=method, accuracy=accuracy, progress=progress)
+        law = solved_law(mu, method=method, accuracy=accuracy)
         paper = PaperLaw(mu)
         for sigma in sigmas:
             surface = RoughSurface(sigma / EPS_NM)
@@ -283,9 +284,11 @@ def judged_with_the_solved_law():
                                  lambda mu: table.law(mu).delta_jump, large_mu=top)}
 
 
-def run(out, *, compare_mu=COMPARISON_MU, accuracy="default", refit_method="bem", step=print):
+def run(out, *, compare_mu=COMPARISON_MU, accuracy="default", refit_method="bem", step=print,
+        bars=None):
     """Compute everything, write rough_surface.json/.png/.md and law_comparison.png into `out`.
-    The constants are refitted from `refit_method` ('bem' or 'fem') curves."""
+    The constants are refitted from `refit_method` ('bem' or 'fem') curves. bars:
+    callable(label) giving the progress bar of each long step (`ProgressBar`), or None."""
     step("rough surface: Figs. 9-13 with the paper's laws, then with the solved law (the "
          "shipped table)")
     data = figure_data()
@@ -297,11 +300,14 @@ def run(out, *, compare_mu=COMPARISON_MU, accuracy="default", refit_method="bem"
          f"refit vs solved "
          f"(BEM, {accuracy}) law at mu = "
          + ", ".join(f"{m:g}" for m in compare_mu) + " (solved once, then stored)")
-    fit = stored_refit(method=refit_method, accuracy=accuracy,
-                       announce=partial(print, file=sys.stderr, flush=True))
+    with shown(bars, "refit") as bar:
+        fit = stored_refit(method=refit_method, accuracy=accuracy,
+                           announce=partial(print, file=sys.stderr, flush=True), progress=bar)
     summary["refit"] = {"laws": asdict(fit.laws), "paper": asdict(PAPER_LAWS),
                         "residuals": fit.residuals, "mu": fit.mu, "method": fit.method,
                         "accuracy": fit.accuracy}
+    with shown(bars, "solved laws") as bar:
+        stored_curves(compare_mu, accuracy=accuracy, progress=bar)
     summary["law_comparison"] = law_comparison(compare_mu, fit.laws, accuracy=accuracy)
     write_atomic(out / "rough_surface.json", json.dumps(summary, indent=1, allow_nan=False))
     save_figure(plot(data, spread, summary["solved"]["figures"]), out / "rough_surface.png")

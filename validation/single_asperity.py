@@ -18,11 +18,12 @@ from scipy.optimize import brentq, curve_fit
 from scipy.stats import t as student
 
 from fem_asperity.closed_forms.laws import PAPER_LAWS, wu_pull_off
+from fem_asperity.plumbing.cli import shown
 from fem_asperity.plumbing.files import write_atomic
 from fem_asperity.solver.output import state_index, write_fields
 from fem_asperity.solver.solve import solve_curve
 from fem_asperity.studies.onset import stored_onset
-from fem_asperity.studies.store import stored_curve
+from fem_asperity.studies.store import stored_curves
 from fem_asperity.studies.sweep import sweep
 
 from .single_figures import LOOP_MU, RADIUS_RATIO, save_figures
@@ -241,8 +242,10 @@ def _up_to(path, end):
     return np.r_[p, p_end], np.r_[delta, end]
 
 
-def run(out, *, method="fem", accuracy="default", jobs=None, scheduler=None, step=print):
+def run(out, *, method="fem", accuracy="default", jobs=None, scheduler=None, step=print,
+        bars=None):
     """Sweep, refit, judge and draw; write out/single_asperity/{report.md, report.json, figures}.
+    bars: callable(label) giving the progress bar of each long step (`ProgressBar`), or None.
     Returns the summary (the JSON)."""
     folder = out / "single_asperity"
     step(f"single asperity: {method.upper()} sweep over {len(SWEEP_MU)} mu ({accuracy}, with "
@@ -250,10 +253,12 @@ def run(out, *, method="fem", accuracy="default", jobs=None, scheduler=None, ste
     # The FE's own estimate (its finer discretisation), not the one against the BEM: the
     # cross-check below judges |FE − BEM| against it, which the BEM's estimate would make
     # true by construction.
-    fe = sweep(SWEEP_MU, method=method, accuracy=accuracy, jobs=jobs, scheduler=scheduler,
-               estimate_by="finer")
-    bem = sweep(SWEEP_MU, method="bem", accuracy=accuracy, error_estimate=False, jobs=jobs,
-                scheduler=scheduler)
+    with shown(bars, f"{method.upper()} sweep") as bar:
+        fe = sweep(SWEEP_MU, method=method, accuracy=accuracy, jobs=jobs, scheduler=scheduler,
+                   estimate_by="finer", progress=bar)
+    with shown(bars, "BEM sweep") as bar:
+        bem = sweep(SWEEP_MU, method="bem", accuracy=accuracy, error_estimate=False, jobs=jobs,
+                    scheduler=scheduler, progress=bar)
     step("single asperity: onset of jump-in, refit with 95% intervals, verdicts, figures")
     onset = stored_onset(method=method, accuracy=accuracy)
     rows = _rows(fe)
@@ -263,9 +268,10 @@ def run(out, *, method="fem", accuracy="default", jobs=None, scheduler=None, ste
     found = verdicts(rows, onset.mu_onset, deviations, transition)
     loops = {f"{r['mu']:g}": hysteresis(r["curve"]) for r in rows}
     bem_loops = {f"{r['mu']:g}": hysteresis(r["curve"]) for r in bem_rows}
-    whole = {mu: stored_curve(mu, method="bem", accuracy=accuracy,
-                              unstable_branch=True).equilibrium
-             for mu in LOOP_MU if mu > onset.mu_onset}
+    with shown(bars, "BEM whole curves (unstable branches)") as bar:
+        whole = {mu: curve.equilibrium for mu, curve in stored_curves(
+            [mu for mu in LOOP_MU if mu > onset.mu_onset], method="bem", accuracy=accuracy,
+            unstable_branch=True, progress=bar).items()}
     figures = save_figures(folder, rows, bem_rows, refit, onset.mu_onset, loops, bem_loops,
                            whole)
     figures += fields_after_jump_in(folder, accuracy)

@@ -1,6 +1,7 @@
 """Command-line plumbing shared by the package's entry points: one-line errors, tables, JSON."""
 
 import argparse
+import contextlib
 import json
 import math
 import os
@@ -129,3 +130,25 @@ class ProgressBar:
         self(1.0)
         if self.tty:
             self.stream.write("\n")
+
+
+def share(progress, start, stop):
+    """`progress` (callable(fraction done) or None) told of one part of the work: that part's
+    fractions 0-1 become start-stop of the whole."""
+    if progress is None:
+        return None
+    return lambda fraction: progress(start + (stop - start) * fraction)
+
+
+@contextlib.contextmanager
+def shown(bars, label):
+    """The progress callable of one long step: `bars(label)` (a `ProgressBar`), finished when
+    the step ends without error if it moved at all (a step that only read the store shows
+    nothing); None where `bars` is None."""
+    if bars is None:
+        yield None
+        return
+    bar = bars(label)
+    yield bar
+    if bar.shown >= 0:
+        bar.close()

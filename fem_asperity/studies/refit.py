@@ -20,9 +20,10 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from ..closed_forms.laws import AsperityLaws, wu_pull_off
+from ..plumbing.cli import share
 from ..plumbing.revision import code_revision
 from .onset import stored_onset
-from .store import cache_dir, stored_curve, stored_json
+from .store import cache_dir, stored_curves, stored_json
 
 #: Tabor parameters of the refit: both regimes, on uniform BEM grids (below
 #: MU_TRACKING["bem"]), where a curve is cheap. Not pinned by a test (test_refit.py fits its own μ).
@@ -54,11 +55,12 @@ def _stats(residual):
 
 
 def refit(mus=REFIT_MU, *, method="bem", accuracy="default", progress=None):
-    """Fit the eight constants to curves at `mus` (solved once, then stored)."""
-    stored = [stored_curve(mu, method=method, accuracy=accuracy) for mu in mus]
-    events = [{"mu": s.mu, **s.events.records()} for s in stored]
-    if progress:
-        progress(0.8)
+    """Fit the eight constants to curves at `mus` (solved once, then stored). progress:
+    callable(fraction done): the curves solved up to 0.8 (`stored_curves`), then 1 once the
+    onset of jump-in is found and the constants fitted."""
+    stored = stored_curves(mus, method=method, accuracy=accuracy,
+                           progress=share(progress, 0.0, 0.8))
+    events = [{"mu": s.mu, **s.events.records()} for s in stored.values()]
     mu = np.array([e["mu"] for e in events])
     col = {k: np.array([np.nan if e[k] is None else e[k] for e in events], float)
            for k in ("p_off", "a_c", "delta_oc", "delta_o_star", "x_oc")}
@@ -89,18 +91,18 @@ def _refit_from_dict(data):
                  data["accuracy"])
 
 
-def stored_refit(*, method="bem", accuracy="default", cache=None, announce=None):
+def stored_refit(*, method="bem", accuracy="default", cache=None, announce=None, progress=None):
     """`Refit` read from the store, or computed (over `REFIT_MU`) and stored. The store key is
     the revision of this module's code and all it imports (the fit forms, the onset search, the
     laws, the solver). announce: callable(str), told when the refit has to be computed (it
-    solves and stores the curves it needs first)."""
+    solves and stores the curves it needs first); progress: as `refit`'s, while it is."""
     path = Path(cache or cache_dir()) / f"refit-{method}-{accuracy}-{code_revision(__name__)}.json"
 
     def compute():
         if announce is not None:
             announce(f"refitting the eight constants from {method} curves at {len(REFIT_MU)} "
                      "mu (stored for next time) ...")
-        return refit(method=method, accuracy=accuracy)
+        return refit(method=method, accuracy=accuracy, progress=progress)
 
     return stored_json(path, _refit_from_dict, compute,
                        lambda found: {**asdict(found), "laws": asdict(found.laws)})
