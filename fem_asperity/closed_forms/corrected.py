@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..plumbing.checks import finite_result, in_range
-from .laws import wu_pull_off
+from .laws import LawEvents, wu_pull_off
 from .lj import bradley_force
 
 #: The JKR curve's least force is at s_m (dP̄/ds = 0); u_m is its δ-term there.
@@ -42,6 +42,13 @@ S_TURN = (np.sqrt(2.0 * np.pi) / 4.0) ** (2.0 / 3.0)
 #: integrals read P̄(δ̄o) off them linearly (test_corrected_law.py checks the curve against a
 #: root find of the parametric form to 1e-4 max(1, |P̄|)).
 SAMPLES, S_SPAN = 4000, 2e4
+#: The onset of jump-in measured by `python -m fem_asperity onset` (BEM `default`, bracket
+#: [0.69666, 0.69866], as the shipped table of solved laws has it): from it on the law's
+#: approach jumps in (`CorrectedLawAtMu.events`). test_bem_curve.py pins the onset in 0.69-0.70.
+MU_JUMP = 0.69766
+#: The μ of the shipped table of solved laws (`gw.law_table`), to which the constants were
+#: fitted and against which the law's errors are measured; outside, its error is not known.
+MEASURED_MU = (0.01, 50.0)
 #: Newton steps for x̄_B: quadratic from above, but linear at P̄ = −1 (Bradley's minimum, a double
 #: root), where 30 leave 2e-9 in x̄ and nothing in P̄ (test_corrected_law.py).
 WALL_STEPS = 30
@@ -80,6 +87,12 @@ class CorrectedLaws:
     def at(self, mu):
         """The law at one μ (> 0) as a `CorrectedLawAtMu`."""
         return CorrectedLawAtMu(float(in_range("mu", mu, 0.0)), self)
+
+    def events(self, mu):
+        """The approach's events at Tabor parameter(s) `mu` as a `LawEvents`
+        (`CorrectedLawAtMu.events`)."""
+        rows = [self.at(m).events() for m in np.atleast_1d(mu)]
+        return LawEvents(**{key: np.array([row[key] for row in rows]) for key in rows[0]})
 
 
 class CorrectedLawAtMu:
@@ -125,6 +138,21 @@ class CorrectedLawAtMu:
         with np.errstate(over="ignore"):  # refused by finite_result
             out[deep] = self._area[0] + np.pi * (self._delta[0] - flat[deep])
         return finite_result(out.reshape(d.shape), "the corrected law's area")
+
+    def events(self):
+        """The approach's events as the law puts them (the fields of `LawEvents`): P̄max, the
+        least force of the law's curve [2πRΔγ], and its δ̄oc [ε]; first contact δ̄o* at the jump
+        δ̄J [ε]; a jump-in from MU_JUMP on. Two events the law does not give are NaN: ā_c (its
+        area is JKR's whole contact, the paper's ā_c only the compressive part) and x̄oc (its
+        rigid Bradley branch puts the centre gap at δ̄J, where the solid has deflected)."""
+        below = self._delta < self.delta_jump  # and the jump itself, where `force` lands
+        delta = np.r_[self._delta[below], self.delta_jump]
+        p = np.r_[self._p[below], self.force(self.delta_jump)]
+        k = int(np.argmin(p))
+        jump = self.mu >= MU_JUMP
+        return {"mu": self.mu, "p_max": float(p[k]), "delta_oc": float(delta[k]),
+                "delta_o_star": self.delta_jump, "a_c": np.nan, "jump_in": jump,
+                "x_oc": np.nan}
 
     def _hertz(self, d):
         """Beyond the deepest sample (s > S_SPAN, P̄ > 1e12): Hertz, P̄ growing like

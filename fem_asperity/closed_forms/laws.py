@@ -54,11 +54,12 @@ class LawEvents:
     x_oc: object
 
     def records(self):
-        """One JSON-ready dict per μ (floats, bools; x_oc None where there is no jump-in)."""
+        """One JSON-ready dict per μ (floats, bools; x_oc None where there is no jump-in, an
+        event the law does not give (NaN) None)."""
         columns = np.broadcast_arrays(*(np.atleast_1d(getattr(self, f.name)) for f in fields(self)))
         rows = []
         for values in zip(*columns):
-            row = {f.name: v.item() for f, v in zip(fields(self), values)}
+            row = {f.name: None if np.isnan(v) else v.item() for f, v in zip(fields(self), values)}
             row["jump_in"] = bool(row["jump_in"])
             if not row["jump_in"]:
                 row["x_oc"] = None
