@@ -1,5 +1,7 @@
 """`validation.rough_surface`'s figures and tables: the paper's law beside the solved law over μ."""
 
+import pytest
+
 from validation.rough_figures import plot_comparison
 from validation.rough_surface import comparison_table
 
@@ -15,15 +17,38 @@ def test_the_law_comparison_shows_every_mus_tension():
 
 
 def test_the_paper_against_solved_table_gives_the_ratio_and_the_verdict():
-    """A row per μ and σ with F̄max paper/solved and whether the paper's law holds (within
-    10 %), the count above the table."""
+    """A row per μ and σ with the four laws' F̄max, paper/solved and whether the paper's law
+    holds (within 10 %), corrected/solved, and both counts above the table."""
     row = {"mu": 1.0, "sigma_nm": 0.5, "f_max_paper": 0.268, "f_max_refit": 0.3,
-           "f_max_solved": 0.461, "max_dF": 0.2, "d_at_max_dF": 1.0, "max_dS_rel": 0.1,
-           "d_at_max_dS": 1.5, "interpolation_error": 1e-4}
-    close = {**row, "mu": 0.1, "f_max_paper": 0.95, "f_max_solved": 1.0}
+           "f_max_corrected": 0.45, "f_max_solved": 0.461, "max_dF": 0.2, "d_at_max_dF": 1.0,
+           "max_dS_rel": 0.1, "d_at_max_dS": 1.5, "interpolation_error": 1e-4}
+    close = {**row, "mu": 0.1, "f_max_paper": 0.95, "f_max_corrected": 0.8,
+             "f_max_solved": 1.0}
     table = comparison_table([close, row])
-    assert "holds (F̄max within 10% of the solved law's) on 1 of 2 rows" in table
-    assert "| 0.950 | holds |" in table and "| 0.581 | fails: -42% |" in table
+    assert ("holds (F̄max within 10% of the solved law's) on 1 of 2 rows; the corrected law "
+            "on 1") in table
+    assert "| 0.950 | holds | 0.800 |" in table and "| 0.581 | fails: -42% | 0.976 |" in table
+
+
+@pytest.mark.slow
+def test_figs_9_to_13_draw_the_other_laws_beside_the_papers():
+    """The paper's law solid, the corrected law dotted (up to μ = 50, where it is measured), in
+    the colour of the same σ; the title says which is which."""
+    from gw.laws import CorrectedLaw
+    from validation.rough_figures import plot
+    from validation.rough_surface import figure_data
+
+    paper, corrected = figure_data(), figure_data(CorrectedLaw, mu_max=50.0)
+    spread = {"zeta": [1.0], "mu": [1.0], "f_max": [0.5]}
+    figure = plot(paper, spread, {"corrected": corrected})
+    fig11 = figure.axes[4]
+    assert fig11.get_title() == "Fig. 11: σ [nm] ="
+    solid = [line for line in fig11.get_lines() if line.get_linestyle() == "-"]
+    dotted = [line for line in fig11.get_lines() if line.get_linestyle() == ":"]
+    assert len(solid) == len(dotted) == 3
+    assert [line.get_color() for line in solid] == [line.get_color() for line in dotted]
+    assert max(dotted[0].get_xdata()) <= 50.0 < max(solid[0].get_xdata())
+    assert "dotted: the corrected law" in figure._suptitle.get_text()
 
 
 def test_the_solved_approach_tends_to_jkrs_landing_not_to_its_pull_off():

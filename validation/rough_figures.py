@@ -8,20 +8,28 @@ from gw.laws import PaperLaw
 from gw.surface import RoughSurface
 from gw.tables import solved_law
 
+#: Line styles of the other laws in Figs. 9-13 (the paper's is solid).
+STYLES = {"solved": "--", "corrected": ":", "refit": "-."}
 
-def plot(data, spread, solved=None):
+
+def plot(data, spread, others=None):
     """Figs. 9-13 and the ξ collapse as one 3×3 figure, with the paper's law (solid) and, where
-    `solved` (the same series with the solved law) has them, the solved law (dashed, same
-    colour); returns the matplotlib Figure."""
+    they have them, the same series with the other laws of `others` ({'solved'|'corrected'|
+    'refit': series}, in the line style of STYLES, same colour per μ or σ); returns the
+    matplotlib Figure."""
+    others = others or {}
     fig = Figure(figsize=(15, 12), layout="tight")
     ax = fig.subplots(3, 3)
     d = data["fig9"]["d"]
     for k, (mu, c) in enumerate(data["fig9"]["curves"].items()):
         ax[0, 0].plot(d, c["F"], color=f"C{k}", label=f"μ = {mu}")
         ax[0, 1].plot(d, c["S"], color=f"C{k}", label=f"μ = {mu}")
-        if solved is not None:
-            ax[0, 0].plot(d, solved["fig9"]["curves"][mu]["F"], "--", color=f"C{k}")
-            ax[0, 1].plot(d, solved["fig9"]["curves"][mu]["S"], "--", color=f"C{k}")
+        for name, series in others.items():
+            if mu in series["fig9"]["curves"]:
+                ax[0, 0].plot(d, series["fig9"]["curves"][mu]["F"], STYLES[name],
+                              color=f"C{k}")
+                ax[0, 1].plot(d, series["fig9"]["curves"][mu]["S"], STYLES[name],
+                              color=f"C{k}")
     ax[0, 0].set(xlabel="d / σ", ylabel="F̄", title="Fig. 9a: σ = 2 nm")
     ax[0, 1].set(xlabel="d / σ", ylabel="S̄", title="Fig. 9b: σ = 2 nm", yscale="log",
                  ylim=(1e-4, None))
@@ -36,8 +44,10 @@ def plot(data, spread, solved=None):
     for axis, key, x, xlabel, title, scale in panels:
         for k, (label, values) in enumerate(data[key]["f_max"].items()):
             axis.plot(data[key][x], values, color=f"C{k}", label=label)
-            if solved is not None and key in solved:
-                axis.plot(solved[key][x], solved[key]["f_max"][label], "--", color=f"C{k}")
+            for name, series in others.items():
+                if key in series:
+                    axis.plot(series[key][x], series[key]["f_max"][label], STYLES[name],
+                              color=f"C{k}")
         axis.set(xlabel=xlabel, ylabel="F̄max", title=title, xscale=scale)
     xi = np.asarray(spread["zeta"]) / (np.asarray(spread["mu"]) + 1.0)
     sc = ax[2, 2].scatter(xi, spread["f_max"], c=np.log10(spread["mu"]), s=8, cmap="viridis")
@@ -47,8 +57,11 @@ def plot(data, spread, solved=None):
         axis.grid(alpha=0.3)
         if axis.get_legend_handles_labels()[0]:
             axis.legend(fontsize=7)
+    shown_as = {"solved": "dashed: the solved law (table of BEM solves, μ ≤ 50)",
+                "corrected": "dotted: the corrected law (μ ≤ 50)",
+                "refit": "dash-dot: the paper's forms refitted"}
     fig.suptitle(f"Paper's laws on a GW surface (ε = {data['eps_nm']} nm, ω = {data['omega']})"
-                 + ("; dashed: the solved law (table of BEM solves, μ ≤ 50)" if solved else ""))
+                 + "".join(f"; {shown_as[name]}" for name in others))
     return fig
 
 
