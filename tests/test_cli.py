@@ -687,7 +687,8 @@ def test_a_curve_as_a_dataframe_in_si():
 def test_a_step_shows_its_bar_only_if_it_moved_and_a_part_reports_its_share():
     import io
 
-    from fem_asperity.plumbing.cli import ProgressBar, share, shown
+    from fem_asperity.plumbing.cli import ProgressBar, shown
+    from fem_asperity.plumbing.progress import share
 
     streams = []
 

@@ -23,3 +23,16 @@ def test_ci_runs_the_readme_setup_and_test_commands():
     ci = (ROOT / ".ci" / "run").read_text().splitlines()
     assert setup in ci and tests in ci
     assert ci.index(setup) < ci.index(tests)
+
+
+def test_the_committed_reports_come_from_the_current_solver():
+    """docs/report.md and docs/layered.md are copies of the main job's output (the README says
+    how): each names the solver revision it ran, which must be today's, so a change that moves
+    the solver regenerates them."""
+    from fem_asperity.plumbing.revision import solver_revision
+
+    for name in ("report.md", "layered.md"):
+        found = re.search(r"solver revision (\w+)", (ROOT / "docs" / name).read_text())
+        assert found and found.group(1) == solver_revision(), (
+            f"docs/{name} was written by another solver revision: regenerate it "
+            "(README, 'The report and figures under docs/')")

@@ -23,8 +23,9 @@ from dataclasses import asdict
 
 import numpy as np
 
-from fem_asperity.plumbing.cli import share, shown
+from fem_asperity.plumbing.cli import shown
 from fem_asperity.plumbing.files import save_figure, write_atomic
+from fem_asperity.plumbing.progress import share
 from fem_asperity.solids.fe import Solid
 from fem_asperity.studies.store import stored_curve
 from fem_asperity.studies.sweep import sweep

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import fem_asperity
 from fem_asperity.plumbing.provenance import git_commit, machine
+from fem_asperity.plumbing.revision import solver_revision
 
 #: Items of the paper not yet judged, with what would judge them.
 PENDING = (
@@ -30,7 +31,8 @@ def provenance(command, commit=None):
     now = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     commit = commit or git_commit(HERE) or "unknown"
     return (f"Regenerate with `{command}`. Package version {fem_asperity.__version__}, "
-            f"commit {commit}, {now}, on {machine_phrase()}.")
+            f"commit {commit}, solver revision {solver_revision()}, {now}, on "
+            f"{machine_phrase()}.")
 
 
 def counted(n, one, many):

@@ -132,14 +132,6 @@ class ProgressBar:
             self.stream.write("\n")
 
 
-def share(progress, start, stop):
-    """`progress` (callable(fraction done) or None) told of one part of the work: that part's
-    fractions 0-1 become start-stop of the whole."""
-    if progress is None:
-        return None
-    return lambda fraction: progress(start + (stop - start) * fraction)
-
-
 @contextlib.contextmanager
 def shown(bars, label):
     """The progress callable of one long step: `bars(label)` (a `ProgressBar`), finished when

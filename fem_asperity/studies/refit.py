@@ -20,7 +20,7 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 from ..closed_forms.laws import AsperityLaws, wu_pull_off
-from ..plumbing.cli import share
+from ..plumbing.progress import share
 from ..plumbing.revision import code_revision
 from .onset import stored_onset
 from .store import cache_dir, stored_curves, stored_json

@@ -23,9 +23,9 @@ from pathlib import Path
 import numpy as np
 
 from ..path.curve import Curve, Events, Jump, curve_from_columns
-from ..plumbing.cli import share
 from ..plumbing.errors import InputError
 from ..plumbing.files import nearest_existing, writable_folder, write_atomic
+from ..plumbing.progress import share
 from ..plumbing.revision import solver_revision
 from ..solids.fe import Solid
 from ..solver.presets import METHODS, PRESETS, relative_cost
