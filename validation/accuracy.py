@@ -28,8 +28,7 @@ KEYS = ("p_off", "p_max", "delta_oc", "a_c", "x_oc", "delta_jump_in", "delta_jum
 #: One μ per regime: DMT-like (0.1), the transition (1), JKR-like (5, 10). The FE follows the
 #: contact edge from μ = 5 but meshes the whole strip r ≤ r_fine finely, so above FE_MU_MAX its
 #: curves (and their estimates' meshes) cost minutes: left out; above FE_FINE_MU_MAX its `fine`
-#: too (at μ = 5 the `draft` estimate's solve alone, on elements twice as long as `fine`'s, had
-#: 500k DOFs and took 234 s on the whole surface).
+#: too (at μ = 5 the `draft` estimate's solve alone had 500k DOFs).
 STUDY_MUS, FE_MU_MAX, FE_FINE_MU_MAX = (0.1, 1.0, 5.0, 10.0), 5.0, 1.0
 #: --quick: the transition only, the two cheaper presets, one setting of each kind.
 QUICK_MUS, QUICK_PRESETS = (1.0,), ("draft", "default")

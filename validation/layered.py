@@ -32,8 +32,8 @@ from fem_asperity.studies.sweep import sweep
 from gw import RoughSurface, solved_law, strength
 
 #: The map: Tabor parameters of the substrate, thicknesses (√(Rε)) and modulus ratios. The ratios
-#: stop at 0.3 because a softer layer sizes the grid for its own μ M^(−2/3): at μ = 2, M = 0.2,
-#: t = 0.1 one curve took 150 s.
+#: stop at 0.3 because a softer layer sizes the grid for its own μ M^(−2/3), and at μ = 2,
+#: M = 0.2 one curve costs minutes.
 MUS = (0.5, 1.0, 2.0)
 THICKNESSES = (0.3, 1.0, 3.0, 10.0)
 RATIOS = (0.3, 0.5, 2.0, 5.0)

@@ -65,8 +65,8 @@ RATE_CAP = 4.0
 #: uniform grid's da (`TraceSettings`), not the settings' da, which grids that follow the edge
 #: hold to a band (`presets.EDGE_STEP`) for `continuation.follow`: ā_c is no event of a branch
 #: followed in its tip, and held to a band (ā_c recedes faster than the tip) the steps were 0.7
-#: of a band. BEM `draft`, μ = 50 (one run each, this machine, with `_from`'s grid): 255.1 s →
-#: 228.0 s, P̄off 1.2e-9 and the jump-out's δ̄o 6e-7 apart. Not pinned by a test.
+#: of a band (faster at the same events, measured in the commit that set it). Not pinned by a
+#: test.
 TIP_DA, DA_FLOOR = TraceSettings.da, 0.125
 #: Newton iterations allowed for one state. Not pinned by a test.
 MAX_NEWTON = 10

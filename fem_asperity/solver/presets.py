@@ -71,20 +71,13 @@ FE_GRADING = 0.2
 #: other μ measured with the pre-contact grid at H_MAX_BEM, before it held every node).
 MU_TRACKING = {"bem": 4.0, "fem": 5.0}
 BAND_COHESIVE, H_INSIDE = 8.0, 0.1
-#: A band holds at most BAND_ELEMENTS elements of the ripple-free size (RIPPLE_FREE μ^(−2) /
-#: RIPPLE_MARGIN, which sets the BEM `default`'s edge elements from μ ≈ 18 on, `draft`'s from
-#: 4.5), 128, as many as `default`'s band holds below: beyond, BAND_COHESIVE μ^(−3/2) would hold
-#: ever more (∝ √μ, 214 at μ = 50), and each Newton matrix grows with them (its factorisation as
-#: n³) while the steps, which the band limits, do not grow. BEM `draft` at μ = 50 (one run, this
-#: machine, with EDGE_STEP): 521.8 s → 386.2 s, grids of at most 1003 nodes instead of 1348, 1187
-#: grids instead of 765, P̄off 3.7e-9 apart; below μ ≈ 17.8 the band is unchanged. Not pinned by
-#: a test.
+#: Most elements of the ripple-free size in a band, 128 (what `default`'s band holds below μ ≈ 18):
+#: beyond, each Newton matrix grows (as n³) while the steps do not. Measured at μ = 50 in f7ac055;
+#: benchmarks/results/large_mu.md times the large μ. Not pinned by a test.
 BAND_ELEMENTS = 128
-#: A step along a branch on grids that follow the edge changes ā_c by at most EDGE_STEP of a
-#: band, 1 (a step that leaves its grid's fine band is retried shorter anyway,
-#: `continuation.INADMISSIBLE_RATIO`): BEM `draft` at μ = 20 took 497 points and 32.0 s with
-#: 0.5, 423 points and 30.6 s with 1, P̄off 4e-10 apart (one run each, this machine). Not
-#: pinned by a test.
+#: Largest change of ā_c in one step on grids that follow the edge, in bands: 1 (a step that
+#: leaves its grid's band is retried shorter anyway; 0.5 gave the same P̄off at more points,
+#: f7ac055). Not pinned by a test.
 EDGE_STEP = 1.0
 #: Growth of boundary-integral elements per element beyond the fine zone, 0.1. Not pinned by a
 #: test.
@@ -108,14 +101,12 @@ RIPPLE_FREE = {"fem": 0.45, "bem": 0.28, "edge": 0.33}
 #: pinned by a test.
 RIPPLE_MARGIN = 1.25
 #: Most surface elements of an FE curve, 2500: the dense condensed surface's factorisations grow
-#: like the cube of the count (at μ = 5 the `draft` estimate's solve, 1141 elements, took 234 s;
-#: 2500 would take about 40 min); a soft layer at μ = 1 with modulus ratio 0.01 asked for 22000.
+#: as the cube of the count, and 2500 costs tens of minutes (8bcd715 measured it).
 #: test_fem_curve.py::test_a_layer_the_fe_cannot_resolve_is_refused_up_front.
 FE_MAX_SURFACE_ELEMENTS = 2500
-#: Most elements of an FE mesh, 300k: at μ = 5 the `draft` estimate's solve had 125k (498k DOFs)
-#: and took 234 s; a layer 0.01 √(Rε) thick and 10 times softer at μ = 1 meshed 2.2M and the
-#: process was killed for memory at 13.7 GB. Checked after meshing (seconds), before assembly.
-#: test_fem_curve.py::test_a_layer_the_fe_cannot_resolve_is_refused_up_front.
+#: Most elements of an FE mesh, 300k, checked after meshing, before assembly: a mesh of 2.2M
+#: ran out of memory (67d85c7). test_fem_curve.py::test_a_layer_the_fe_cannot_resolve_is_
+#: refused_up_front.
 FE_MAX_ELEMENTS = 300_000
 #: Most nodes of a uniform boundary-integral grid: its dense operators take n² memory (128 MB
 #: per matrix at 4000) and each factorisation n³ work; the edge-following grids stay below

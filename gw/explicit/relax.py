@@ -35,13 +35,13 @@ TOLERANCE = 1e-9
 #: Newton steps allowed per separation before the state is reported unconverged (a jump across
 #: a whole asperity takes tens; a step on a stable branch two to four).
 MAX_STEPS = 300
-#: Relative residual the conjugate gradients stop at (or √|∇E| once that is smaller): 0.5
-#: took 1669 Newton steps and 16 s on a 128² rough map where 0.1 took 1197 and 14 s, and 0.01
-#: 1050 steps but more products, 16 s (benchmarks/results/rough_surfaces.md has the map).
+#: Relative residual the conjugate gradients stop at (or √|∇E| once that is smaller): 0.1, the
+#: cheapest of 0.5, 0.1 and 0.01 on the 128² map of benchmarks/results/rough_surfaces.md (the
+#: commit that set it has the times). Not pinned by a test.
 NEWTON_FORCING = 0.1
 #: BLAS threads while a map is solved (`whole`): its only BLAS calls are these dot products,
 #: as fast on one thread; with two, beside a pool of solves that keeps the cores busy, each call
-#: waited for a core (7 ms instead of 0.05 on a 200 × 101 array, in a scratch profile).
+#: waited for a core (a profile in the commit that set it). Not pinned by a test.
 BLAS_THREADS = 1
 #: Conjugate-gradient iterations per Newton step: H = I − SDS is near 1 away from contact, and
 #: its largest eigenvalues (~16 c G(0), in contact) are few.

@@ -47,7 +47,7 @@ HEIGHT_STEP_MAX = 0.5
 #: A map this much coarser than either bound is refused, not warned about.
 REFUSE = 8.0
 #: Most pixels of a map: its free grid (four times the map) then holds 1.7e7 doubles per field
-#: and the solve takes hours (benchmarks/results/rough_surfaces.md: 254 s for 256² free).
+#: and the solve takes hours (benchmarks/results/rough_surfaces.md times 256² free).
 MAX_PIXELS = 2048**2
 #: Fewest pixels along a side: the error estimate halves the map, and a contact zone needs a
 #: few pixels on the half map.
