@@ -21,6 +21,8 @@ from fem_asperity.plumbing.revision import code_revision, solver_revision
 from fem_asperity.studies.store import cache_dir, stored_curve
 from gw.explicit.compare import settled
 
+from .report import counted
+
 #: The quick tier: six caps at μ = 1, ζ = 2, σRη = 0.05 (a 58² map; seconds).
 QUICK = ({"mu": 1.0, "zeta": 2.0, "sigma_r_eta": 0.05, "summits": 6},)
 #: The map: μ below and above the jump-in onset (0.697) at a pixel of 0.2 √(Rε) (compliance
@@ -247,11 +249,12 @@ def section(summary):
               "the solved law, nothing felt from the others). Each summit's law counts the "
               "LJ attraction of a whole paraboloid, so the ground between the summits is counted "
               "by every law whose tail reaches it: counting it once (rigid, 'cells') lowers "
-              f"F̄max by {min(shared):.0%} to {max(shared):.0%} of the whole surface's (median "
-              f"{np.median(shared):.0%}), most where the summits are dense against the LJ range "
+              f"F̄max by {_span(shared, '.0%')} of the whole surface's, most where the summits "
+              "are dense against the LJ range "
               "(summits s √(Rε) apart, s² = ζ/σRη, meet at a gap of about s²/8 ε above the "
-              "lower). The interacting model adds the elastic far field to the cells. None of "
-              f"the three holds on {neither}/{len(rows)} surfaces. "
+              "lower). The interacting model adds the elastic far field to the cells. On "
+              f"{neither} of {counted(len(rows), 'surface', 'surfaces')} none of the three "
+              "holds. "
               + (f"On {len(stopped)}/{len(rows)} surfaces the interacting model found no "
                  "equilibrium part-way down (contacts too large or too close for a point "
                  "load's far field): "
@@ -269,7 +272,7 @@ def section(summary):
               "from the sum over the same summits by the sample and by the caps under others, "
               "mostly low ones, which GW counts as summits: "
               f"with {summits} caps per surface (fewer summits where a cap covers another) the "
-              f"integral over their Gaussian lies {min(sampling):+.0%} to {max(sampling):+.0%} "
+              f"integral over their Gaussian lies {_span(sampling, '+.0%')} "
               "off the sum over them, most at large ζ, where F̄max is set by the few highest "
               "summits. So on "
               "these small surfaces the GW-integral columns measure the sample as much as GW; "
@@ -281,12 +284,19 @@ def section(summary):
     spread = _draw_spread(rows)
     if spread:
         lines += ["", "Two draws of each surface (seeds): their errors differ by "
-                  + "; ".join(f"{NAMES[k]} {min(v):.0%} to {max(v):.0%} "
-                              f"(median {np.median(v):.0%})" for k, v in spread.items())
+                  + "; ".join(f"{NAMES[k]} {_span(v, '.0%')}" for k, v in spread.items())
                   + " of the whole surface's F̄max: the share of the sample in each verdict."]
     if summary.get("self_affine"):
         lines += ["", affine_section(summary["self_affine"])]
     return "\n".join(lines)
+
+
+def _span(values, form):
+    """'17%' for one value (or all equal as written), else '12% to 31% (median 17%)'."""
+    low, high = format(min(values), form), format(max(values), form)
+    if low == high:
+        return low
+    return f"{low} to {high} (median {format(float(np.median(values)), form)})"
 
 
 def _stop(stopped, force):
