@@ -43,14 +43,15 @@ def test_laws_from_physical_inputs_match_mu():
     assert json.loads(done.stdout)[0]["mu"] == pytest.approx(mu)
 
 
-@pytest.mark.parametrize("package", ["fem_asperity", "gw", "validation"])
+@pytest.mark.parametrize("package", ["fem_asperity", "gw", "validation", "advisor"])
 def test_every_command_has_a_version_and_names_its_subcommands(package):
     done = cli(package, "--version")
     assert done.returncode == 0 and done.stdout.split()[-1] == __version__
     shown = cli(package, "--help").stdout
     commands = {"fem_asperity": ("laws", "scales", "curve", "sweep", "onset"),
                 "gw": ("fmax", "curve"),
-                "validation": ("all", "single-asperity", "rough-surface")}[package]
+                "validation": ("all", "single-asperity", "rough-surface"),
+                "advisor": ("scene", "--json")}[package]
     assert all(c in shown for c in commands)
 
 

@@ -6,7 +6,7 @@ import signal
 import sys
 
 #: The packages whose `python -m` command lines this holds.
-COMMANDS = ("fem_asperity", "gw", "validation")
+COMMANDS = ("fem_asperity", "gw", "validation", "advisor")
 
 _held = []  # the Ctrl-Cs that came while the modules loaded
 

@@ -1,0 +1,200 @@
+"""The cheapest model of a scene that meets its tolerance, with the measured size of every
+effect a model leaves out (issue 42; so far for the pull-off force of a sphere).
+
+Each effect is the relative change of the pull-off force P̄off that one simplification makes,
+for this scene:
+
+- a closed form (DMT, JKR, Maugis-Dugdale, Wu's eq. 2) or the shipped table of solved laws
+  instead of a solve: read off the table (`gw.law_table`, the retraction's least force at the
+  scene's μ), its own stated error added;
+- Derjaguin's parabola instead of the exact sphere, a homogeneous half-space instead of the
+  layer, a rigid holder instead of the cantilever: computed, each as the difference of two BEM
+  `draft` solves that differ in that one thing, its uncertainty the draft's error estimate;
+- the BEM `draft` instead of `default`: the draft solve's own error estimate of P̄off.
+
+A model's error is the sum of the sizes of the effects it leaves out (a bound, not an
+estimate of their signed sum). Where an effect cannot be bounded (outside the table's μ) the
+models that need it are not chosen, and where no model is known to meet the tolerance the
+advice is the safe one, the BEM `default` solve of the whole scene, and says so.
+"""
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from fem_asperity.closed_forms.laws import PAPER_LAWS, wu_pull_off
+from fem_asperity.closed_forms.reference import maugis_dugdale_pull_off
+from fem_asperity.solids.fe import Solid
+from gw.law_table import shipped_table
+
+#: δ̄o samples [ε] on which the table's retraction is searched for its least force: from deep
+#: in contact out beyond every jump-out the table holds (47 at μ = 28.7, `gw.law_table`).
+PULL_OFF_SEARCH = np.linspace(-5.0, 120.0, 250001)
+#: The closed forms of the pull-off: name → P̄off(μ) [2πRΔγ].
+CLOSED_FORMS = {
+    "DMT": lambda mu: -1.0,
+    "JKR": lambda mu: -0.75,
+    "Maugis-Dugdale": lambda mu: float(maugis_dugdale_pull_off(mu=mu).force),
+    "Wu (eq. 2; the paper's and the corrected law's)": lambda mu: float(
+        wu_pull_off(mu, PAPER_LAWS.c_off)),
+}
+
+
+@dataclass(frozen=True)
+class Effect:
+    """What one simplification does to the quantity asked for, for this scene: its relative
+    `size` (None: not bounded here, `note` says why), its uncertainty and how it was obtained."""
+
+    name: str
+    size: float | None
+    uncertainty: float | None
+    how: str
+    note: str = ""
+
+
+@dataclass(frozen=True)
+class Model:
+    """A way to answer: its P̄off [2πRΔγ], the effects it leaves out and their summed `error`
+    (relative; None if one is not bounded), and its cost in seconds on this machine (measured
+    here where it was run, else None)."""
+
+    name: str
+    p_off: float | None
+    leaves_out: tuple[str, ...]
+    error: float | None
+    cost_s: float | None
+
+
+@dataclass(frozen=True)
+class Advice:
+    """The scene, every effect, every model (cheapest first), the one chosen and why."""
+
+    scene: object
+    effects: tuple[Effect, ...]
+    models: tuple[Model, ...]
+    choice: str
+    message: str
+
+    def records(self):
+        """A JSON-ready dict: the scene in SI, the effects, the models (P̄off in 2πRΔγ and in N)
+        and the choice."""
+        s = self.scene.scales
+        return {
+            "scene": {"mu": s.mu, "R_over_eps": s.R / s.eps, "E_star_Pa": s.E_star,
+                      "dgamma_J_per_m2": s.dgamma, "eps_m": s.eps, "R_m": s.R,
+                      "spring_N_per_m": self.scene.spring_si,
+                      "layer": _layer_record(self.scene.solid),
+                      "quantity": self.scene.quantity, "tolerance": self.scene.tolerance},
+            "effects": [vars(e) for e in self.effects],
+            "models": [{**vars(m), "p_off_N": None if m.p_off is None else m.p_off * s.force}
+                       for m in self.models],
+            "choice": self.choice, "message": self.message,
+        }
+
+
+def _layer_record(solid):
+    if solid.layer_thickness is None:
+        return None
+    return {"thickness_sqrt_R_eps": solid.layer_thickness,
+            "modulus_ratio": solid.layer_modulus_ratio}
+
+
+def advise(scene, *, solve=None):
+    """The `Advice` for `scene` (a `scene.Scene`). solve: the curve solver (`solve_curve`
+    by default; tests pass a counting one)."""
+    if solve is None:
+        from fem_asperity.solver.solve import solve_curve as solve
+    mu = scene.mu
+    effects, models = [], []
+    table = _table_pull_off(mu)
+    solved = _solved_effects(scene, solve)
+    effects += solved["effects"]
+    carried = tuple(e.name for e in solved["effects"] if e.name != DRAFT)
+    if table is None:
+        note = (f"mu = {mu:.4g} is outside the table of solved laws' "
+                f"{shipped_table().mu_range[0]:g}-{shipped_table().mu_range[1]:g}")
+        effects.append(Effect(TABLE, None, None, "table lookup", note))
+    else:
+        p_table, table_error = table
+        effects.append(Effect(TABLE, table_error, None, "the table's stated error of the "
+                              "retraction's force, relative to its P̄off"))
+        for name, law in CLOSED_FORMS.items():
+            p_law = law(mu)
+            effects.append(Effect(_closed(name), abs(p_law / p_table - 1.0), table_error,
+                                  "table lookup (against the solved P̄off)"))
+    size = {e.name: e.size for e in effects}
+    for name, law in CLOSED_FORMS.items():
+        models.append(_model(f"{name} closed form", law(mu), (_closed(name),) + carried, size,
+                             0.0))
+    models.append(_model("table of solved laws", table[0] if table else None,
+                         (TABLE,) + carried, size, None))
+    models.append(_model("BEM draft, the whole scene", solved["p_off"], (DRAFT,), size,
+                         solved["cost_s"]))
+    models.append(Model("BEM default, the whole scene", None, (), None, None))
+    meets = [m for m in models if m.error is not None and m.error <= scene.tolerance]
+    if meets:
+        choice = meets[0]
+        message = (f"{choice.name}: the effects it leaves out sum to {choice.error:.2g} "
+                   f"<= the tolerance {scene.tolerance:g}")
+    else:
+        choice = models[-1]
+        message = ("no cheaper model is known to meet the tolerance "
+                   f"{scene.tolerance:g}: the safe model, the BEM default solve of the whole "
+                   "scene (python -m fem_asperity curve ... --method bem)")
+    return Advice(scene, tuple(effects), tuple(models), choice.name, message)
+
+
+#: Effect names.
+TABLE, DRAFT = "the table of solved laws instead of a solve", "BEM draft instead of default"
+DERJAGUIN = "Derjaguin's parabola instead of the exact sphere"
+HOMOGENEOUS = "a homogeneous half-space instead of the layer"
+RIGID = "a rigid holder instead of the cantilever"
+
+
+def _closed(name):
+    return f"{name} closed form instead of a solve"
+
+
+def _model(name, p_off, leaves_out, size, cost):
+    sizes = [size.get(e) for e in leaves_out]
+    error = None if any(s is None for s in sizes) else float(sum(sizes))
+    return Model(name, p_off, leaves_out, error, cost)
+
+
+def _table_pull_off(mu):
+    """(P̄off, its relative error) of the shipped table's retraction at `mu`, None outside it."""
+    table = shipped_table()
+    lo, hi = table.mu_range
+    if not lo <= mu <= hi:
+        return None
+    law = table.law(mu, path="retraction")
+    p_off = float(np.min(law.force(PULL_OFF_SEARCH)))
+    return p_off, law.error["force"] / abs(p_off)
+
+
+def _solved_effects(scene, solve):
+    """The whole scene at BEM `draft` with its estimate, and one draft solve per simplification
+    that applies: {'p_off', 'cost_s', 'effects'}."""
+    whole = dict(solid=scene.solid, radius_ratio=scene.scales.R / scene.scales.eps,
+                 spring_constant=scene.spring)
+    start = time.perf_counter()
+    full = solve(scene.mu, method="bem", accuracy="draft", error_estimate=True, **whole)
+    cost = time.perf_counter() - start
+    p_full = full.events.p_off
+    estimate = (full.error_estimate or {}).get("p_off")
+    draft_error = None if estimate is None else estimate / abs(p_full)
+    effects = [Effect(DRAFT, draft_error, None, "the draft solve's own error estimate",
+                      "" if estimate is not None else f"no estimate: {full.message}")]
+    variants = [(DERJAGUIN, {"radius_ratio": None})]
+    if scene.solid.layer_thickness is not None:
+        variants.append((HOMOGENEOUS, {"solid": Solid(nu=scene.solid.nu, layer_nu=scene.solid.nu)}))
+    if scene.spring is not None:
+        variants.append((RIGID, {"spring_constant": None}))
+    for name, change in variants:
+        other = solve(scene.mu, method="bem", accuracy="draft", error_estimate=False,
+                      **(whole | change))
+        effects.append(Effect(name, abs(other.events.p_off / p_full - 1.0),
+                              None if draft_error is None else 2.0 * draft_error,
+                              "computed for this scene: two BEM draft solves"))
+    return {"p_off": p_full, "cost_s": cost, "effects": effects}

@@ -1,0 +1,214 @@
+"""A scene file: what a user keeps beside their data (TOML, every dimensional value with its unit).
+
+    [solid]                      # the half-space (the substrate under a layer)
+    E = "3.4 GPa"                # Young's modulus (or E_star, the effective modulus)
+    nu = 0.34
+    [probe]                      # a sphere (an AFM tip, an asperity)
+    radius = "20 nm"
+    E = "170 GPa"                # optional, with nu: an elastic sphere (else rigid)
+    nu = 0.22
+    [adhesion]
+    work = "60 mJ/m^2"           # the work of adhesion Δγ
+    eps = "0.4 nm"               # the LJ equilibrium spacing ε
+    [layer]                      # optional: a bonded layer on the solid (the sphere rigid)
+    thickness = "5 nm"
+    E = "3.4 GPa"
+    nu = 0.34
+    [control]                    # optional: a rigid holder (displacement) by default
+    spring = "0.5 N/m"           # a cantilever's stiffness
+    [want]
+    quantity = "pull_off"        # what the user asks for
+    tolerance = 0.01             # relative
+
+A bad file is refused (`InputError`, one line naming the key) before anything is computed.
+"""
+
+import math
+import re
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+
+from fem_asperity.closed_forms.scales import Scales, effective_modulus
+from fem_asperity.plumbing.errors import DerjaguinWarning, InputError
+from fem_asperity.solids.fe import LAYER_THICKNESS, Solid
+
+try:  # Python 3.11+
+    import tomllib
+except ModuleNotFoundError:  # pragma: no cover (3.10)
+    import tomli as tomllib
+
+#: The units a value may carry, per kind, as factors to SI.
+UNITS = {
+    "pressure": {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9},
+    "length": {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "nm": 1e-9, "pm": 1e-12,
+               "A": 1e-10, "Å": 1e-10},
+    "energy per area": {"J/m^2": 1.0, "mJ/m^2": 1e-3, "N/m": 1.0, "mN/m": 1e-3},
+    "stiffness": {"N/m": 1.0, "mN/m": 1e-3},
+}
+#: The keys of each section: (kind of value, required). Kinds: a unit kind of UNITS, 'ratio'
+#: (a plain number), or a tuple of the words allowed.
+SECTIONS = {
+    "solid": {"E": ("pressure", False), "E_star": ("pressure", False), "nu": ("ratio", False)},
+    "probe": {"radius": ("length", True), "E": ("pressure", False), "nu": ("ratio", False)},
+    "adhesion": {"work": ("energy per area", True), "eps": ("length", True)},
+    "layer": {"thickness": ("length", True), "E": ("pressure", True), "nu": ("ratio", False)},
+    "control": {"spring": ("stiffness", False)},
+    "want": {"quantity": (("pull_off",), True), "tolerance": ("ratio", True)},
+}
+REQUIRED_SECTIONS = ("solid", "probe", "adhesion", "want")
+#: The Poisson's ratio where a scene gives none (the package's default, `Solid`).
+DEFAULT_NU = 0.3
+_VALUE = re.compile(r"^\s*([-+0-9.eE]+)\s*(\S+)\s*$")
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A scene in SI and in the package's terms: `scales` (E*, Δγ, ε, R → μ), `solid` (the
+    layer in √(Rε) and its E* ratio, or a homogeneous half-space), `spring` (the cantilever's
+    k̄ in 2πRΔγ/ε, None: a rigid holder), what is wanted and the relative tolerance; `source`,
+    the file's text (copied into any output)."""
+
+    scales: Scales
+    solid: Solid
+    spring: float | None
+    spring_si: float | None
+    quantity: str
+    tolerance: float
+    source: str
+
+    @property
+    def mu(self):
+        return self.scales.mu
+
+
+def read_scene(path):
+    """The `Scene` of the TOML file at `path`."""
+    path = Path(path)
+    try:
+        text = path.read_text()
+    except OSError as exc:
+        raise InputError(f"scene file {path}: {exc.strerror or exc}") from None
+    return parse_scene(text)
+
+
+def parse_scene(text):
+    """The `Scene` of a scene file's TOML `text`."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"scene file: not TOML: {exc}") from None
+    values = _checked(data)
+    solid, probe, adhesion = values["solid"], values["probe"], values["adhesion"]
+    layer, control, want = values.get("layer"), values.get("control", {}), values["want"]
+    if ("E" in solid) == ("E_star" in solid):
+        raise InputError("solid: give E (with nu) or E_star, one of the two")
+    if "E_star" in solid and "nu" in solid:
+        raise InputError("solid.nu: E_star already holds the Poisson's ratio; give E with nu")
+    if ("E" in probe) != ("nu" in probe):
+        raise InputError("probe: an elastic probe needs both E and nu (omit both: rigid)")
+    if layer is not None and "E" in probe:
+        raise InputError("probe.E: a layer needs a rigid probe (E* lumps the probe's "
+                         "compliance into a homogeneous half-space only)")
+    if layer is not None and "E_star" in solid:
+        raise InputError("solid.E_star: with a layer give the substrate's E and nu")
+    nu = solid.get("nu", DEFAULT_NU)
+    E_star = solid.get("E_star") or effective_modulus(E1=solid["E"], nu1=nu, E2=probe.get("E"),
+                                                      nu2=probe.get("nu"))
+    with warnings.catch_warnings():  # R/ε < 300: the advice measures Derjaguin's effect
+        warnings.simplefilter("ignore", DerjaguinWarning)
+        scales = Scales(E_star=E_star, dgamma=adhesion["work"], eps=adhesion["eps"],
+                        R=probe["radius"])
+    return Scene(scales=scales, solid=_solid(layer, nu, scales), spring=_spring(control, scales),
+                 spring_si=control.get("spring"), quantity=want["quantity"],
+                 tolerance=_tolerance(want["tolerance"]), source=text)
+
+
+def _checked(data):
+    """{section: {key: value in SI}}, every key known and every value of its kind."""
+    unknown = sorted(set(data) - set(SECTIONS))
+    if unknown:
+        raise InputError(f"{unknown[0]}: unknown section (known: {', '.join(SECTIONS)})")
+    missing = [s for s in REQUIRED_SECTIONS if s not in data]
+    if missing:
+        raise InputError(f"{missing[0]}: missing section")
+    out = {}
+    for section, entries in data.items():
+        if not isinstance(entries, dict):
+            raise InputError(f"{section}: must be a [section] of keys")
+        known = SECTIONS[section]
+        for key in entries:
+            if key not in known:
+                raise InputError(f"{section}.{key}: unknown key (known: {', '.join(known)})")
+        for key, (_, required) in known.items():
+            if required and key not in entries:
+                raise InputError(f"{section}.{key}: missing")
+        out[section] = {key: _value(f"{section}.{key}", value, known[key][0])
+                        for key, value in entries.items()}
+    return out
+
+
+def _value(name, value, kind):
+    """`value` of `name` in SI: a '<number> <unit>' string of its kind, a plain number for a
+    ratio, or one of the allowed words."""
+    if isinstance(kind, tuple):
+        if value not in kind:
+            raise InputError(f"{name}: must be one of {', '.join(kind)}; got {value!r}")
+        return value
+    if kind == "ratio":
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise InputError(f"{name}: must be a number; got {value!r}")
+        return _finite(name, float(value))
+    units = UNITS[kind]
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        raise InputError(f"{name}: give its unit, e.g. \"{value} {next(iter(units))}\" "
+                         f"({kind}: {', '.join(units)})")
+    match = _VALUE.match(value) if isinstance(value, str) else None
+    if match is None:
+        raise InputError(f"{name}: must be a number with its unit, e.g. \"1 "
+                         f"{next(iter(units))}\"; got {value!r}")
+    number, unit = match.groups()
+    if unit not in units:
+        raise InputError(f"{name}: {unit!r} is no unit of {kind} ({', '.join(units)})")
+    try:
+        number = float(number)
+    except ValueError:
+        raise InputError(f"{name}: {number!r} is not a number") from None
+    number = _finite(name, number)
+    if number <= 0.0:
+        raise InputError(f"{name}: must be > 0; got {value!r}")
+    return number * units[unit]
+
+
+def _finite(name, number):
+    if not math.isfinite(number):
+        raise InputError(f"{name}: must be finite; got {number!r}")
+    return number
+
+
+def _solid(layer, nu, scales):
+    """The `Solid`: homogeneous, or the layer in √(Rε) and its E* against the substrate's."""
+    if layer is None:
+        return Solid(nu=nu, layer_nu=nu)
+    layer_nu = layer.get("nu", nu)
+    thickness = layer["thickness"] / scales.length_r
+    lo, hi = LAYER_THICKNESS
+    if not lo <= thickness <= hi:
+        raise InputError(f"layer.thickness: {layer['thickness']:.3g} m is "
+                         f"{thickness:.3g} sqrt(R eps); the layered solvers take {lo:g}-{hi:g}")
+    ratio = layer["E"] / (1.0 - layer_nu**2) / scales.E_star
+    return Solid(nu=nu, layer_thickness=thickness, layer_modulus_ratio=ratio, layer_nu=layer_nu)
+
+
+def _spring(control, scales):
+    """k̄ of the cantilever (N/m → 2πRΔγ/ε), None for a rigid holder."""
+    if "spring" not in control:
+        return None
+    return control["spring"] * scales.eps / scales.force
+
+
+def _tolerance(value):
+    if not 0.0 < value < 1.0:
+        raise InputError(f"want.tolerance: a relative tolerance in (0, 1), e.g. 0.01; "
+                         f"got {value!r}")
+    return value

@@ -1,0 +1,142 @@
+"""The scene advisor (issue 42, pull-off of a sphere): a bad scene file is one line naming the
+key; each effect it predicts agrees with the effect measured by solving both models at
+`default`; it picks a closed form where one is good enough and a solve where none is."""
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+from types import SimpleNamespace
+
+import pytest
+
+from advisor import advise, parse_scene, read_scene
+from advisor.advice import DERJAGUIN, DRAFT, HOMOGENEOUS, TABLE
+from fem_asperity import InputError, solve_curve
+from fem_asperity.closed_forms.reference import dmt_pull_off
+from fem_asperity.solids.fe import Solid
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+GOOD = """
+[solid]
+E = "169 GPa"
+nu = 0.22
+[probe]
+radius = "50 nm"
+[adhesion]
+work = "20 mJ/m^2"
+eps = "0.3 nm"
+[want]
+quantity = "pull_off"
+tolerance = 0.01
+"""
+
+
+@pytest.mark.parametrize("edit, named", [
+    (("radius = \"50 nm\"", "radius = 50e-9"), "probe.radius: give its unit"),
+    (("radius = \"50 nm\"", "radius = \"50 GPa\""), "probe.radius: 'GPa' is no unit of length"),
+    (("radius = \"50 nm\"", "radius = \"-50 nm\""), "probe.radius: must be > 0"),
+    (("radius = \"50 nm\"", "radius = \"50 nm\"\nradiuss = \"1 nm\""), "probe.radiuss: unknown"),
+    (("[want]", "[wants]"), "wants: unknown section"),
+    (("E = \"169 GPa\"", "E = \"169 GPa\"\nE_star = \"100 GPa\""), "solid: give E"),
+    (("tolerance = 0.01", "tolerance = 2"), "want.tolerance"),
+    (("quantity = \"pull_off\"", "quantity = \"everything\""), "want.quantity"),
+    (("eps = \"0.3 nm\"", ""), "adhesion.eps: missing"),
+    (("[want]", "[layer]\nthickness = \"5 nm\"\nE = \"3 GPa\"\n[probe]\n[want]"), "probe"),
+])
+def test_a_bad_scene_is_refused_naming_its_key(edit, named):
+    with pytest.raises(InputError, match=named.replace("(", r"\(")):
+        parse_scene(GOOD.replace(*edit))
+
+
+def test_a_layer_under_an_elastic_probe_is_refused():
+    text = GOOD.replace("radius = \"50 nm\"", "radius = \"50 nm\"\nE = \"1 GPa\"\nnu = 0.3")
+    with pytest.raises(InputError, match="probe.E: a layer needs a rigid probe"):
+        parse_scene(text + "[layer]\nthickness = \"5 nm\"\nE = \"3 GPa\"\n")
+
+
+def test_the_command_line_refuses_a_bad_file_in_one_line_and_solves_nothing(tmp_path):
+    scene = tmp_path / "scene.toml"
+    scene.write_text(GOOD.replace("radius = \"50 nm\"", "radius = 50e-9"))
+    done = subprocess.run([sys.executable, "-m", "advisor", str(scene)], capture_output=True,
+                          text=True)
+    assert done.returncode == 2 and len(done.stderr.strip().splitlines()) == 1, done.stderr
+    assert "probe.radius" in done.stderr and "solving" not in done.stderr
+
+
+def test_the_scene_in_the_packages_terms():
+    """μ from eq. 1 with E* of two bodies, R/ε, the layer in √(Rε), k̄ in 2πRΔγ/ε."""
+    scene = read_scene(EXAMPLES / "afm_tip_on_polymer.toml")
+    s = scene.scales
+    assert s.R == pytest.approx(20e-9) and s.eps == pytest.approx(0.4e-9)
+    assert s.E_star == pytest.approx(169e9 / (1 - 0.22**2))
+    assert scene.solid.layer_thickness == pytest.approx(5e-9 / (20e-9 * 0.4e-9) ** 0.5)
+    assert scene.solid.layer_modulus_ratio == pytest.approx(3.4e9 / (1 - 0.34**2) / s.E_star)
+    assert scene.spring == pytest.approx(0.5 * 0.4e-9 / (2 * 3.141592653589793 * 20e-9 * 0.06))
+
+
+@pytest.fixture(scope="module")
+def near_dmt():
+    scene = read_scene(EXAMPLES / "stiff_contact_near_dmt.toml")
+    return scene, advise(scene)
+
+
+def _default(scene, **change):
+    """P̄off of the BEM `default` solve of `scene` with `change`d options."""
+    options = dict(solid=scene.solid, radius_ratio=scene.scales.R / scene.scales.eps,
+                   spring_constant=scene.spring) | change
+    return solve_curve(scene.mu, method="bem", accuracy="default", error_estimate=False,
+                       **options).events.p_off
+
+
+def test_near_dmt_a_closed_form_is_enough_and_its_predicted_effects_are_measured(near_dmt):
+    """The predicted effects against both models solved at `default` (not the draft solves
+    nor the table the advisor read): the DMT closed form's and Derjaguin's parabola's."""
+    scene, advice = near_dmt
+    size = {e.name: e for e in advice.effects}
+    assert "closed form" in advice.choice
+    chosen = next(m for m in advice.models if m.name == advice.choice)
+    assert chosen.error <= scene.tolerance
+    derjaguin = _default(scene, radius_ratio=None)
+    sphere = _default(scene)
+    measured = abs(derjaguin / sphere - 1.0)
+    assert size[DERJAGUIN].size == pytest.approx(measured, abs=1e-4)
+    dmt = size["DMT closed form instead of a solve"]
+    assert dmt.size == pytest.approx(abs(dmt_pull_off().force / derjaguin - 1.0),
+                                     abs=size[TABLE].size + 1e-5)
+
+
+@pytest.mark.slow
+def test_on_a_soft_layer_every_simplification_fails_but_the_solve(tmp_path):
+    """The AFM scene: the layer changes P̄off by more than the tolerance (a homogeneous
+    half-space, and so every closed form and the table, miss it), as does Derjaguin's parabola
+    at R/ε = 50; the BEM draft of the whole scene is chosen. The layer's predicted effect
+    against both solved at `default`."""
+    scene = read_scene(EXAMPLES / "afm_tip_on_polymer.toml")
+    advice = advise(scene)
+    size = {e.name: e.size for e in advice.effects}
+    assert size[HOMOGENEOUS] > scene.tolerance and size[DERJAGUIN] > scene.tolerance
+    assert advice.choice == "BEM draft, the whole scene"
+    measured = abs(_default(scene, solid=Solid(nu=0.22, layer_nu=0.22)) / _default(scene) - 1.0)
+    assert size[HOMOGENEOUS] == pytest.approx(measured, abs=1e-4)
+    record = advice.records()
+    json.dumps(record, allow_nan=False)
+    assert record["scene"]["spring_N_per_m"] == 0.5 and record["models"][0]["p_off_N"] < 0
+
+
+def test_outside_the_table_no_closed_form_is_chosen_and_the_safe_model_is_said(near_dmt):
+    """At μ beyond the table's 50 the closed forms' effects cannot be bounded: never chosen;
+    with a draft estimate above the tolerance the advice is the BEM default solve."""
+    scene, _ = near_dmt
+    far = parse_scene(GOOD.replace("E = \"169 GPa\"", "E = \"0.1 MPa\""))
+    assert far.mu > 50.0
+
+    def solve(mu, **options):  # a stand-in for the solver: seconds, not minutes
+        return SimpleNamespace(events=SimpleNamespace(p_off=-0.7),
+                               error_estimate={"p_off": 0.1}, message="")
+
+    advice = advise(far, solve=solve)
+    size = {e.name: e.size for e in advice.effects}
+    assert size[TABLE] is None and size[DRAFT] == pytest.approx(0.1 / 0.7)
+    assert all(m.error is None for m in advice.models if "closed form" in m.name)
+    assert advice.choice == "BEM default, the whole scene" and "safe model" in advice.message
