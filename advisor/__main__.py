@@ -1,30 +1,48 @@
 """`python -m advisor FILE [--json]`: the cheapest model of the scene in FILE that meets its
 tolerance, and the measured size of every effect each model leaves out."""
 
+import json
 import sys
+from pathlib import Path
 
 from fem_asperity.plumbing.cli import Parser, dump_json, print_table, run
+from fem_asperity.plumbing.files import output_folder, staged_folder, write_atomic
+from fem_asperity.solver.output import write_all
 
 from .advice import advise
+from .advice import run as run_model
 from .scene import read_scene
 
 PROG = "python -m advisor"
+#: Who writes an advice's output folder (`plumbing.files.staged_folder`).
+OWNER = PROG
 
 
 def build_parser():
     parser = Parser(prog=PROG, description=__doc__)
     parser.add_argument("scene", help="the scene file (TOML; advisor/scene.py shows the keys)")
     parser.add_argument("--json", action="store_true", help="print the advice as JSON")
+    parser.add_argument("--run", action="store_true",
+                        help="run the model chosen and write it into --out (SI)")
+    parser.add_argument("--out", type=Path,
+                        help="with --run: the output folder (advice.json, the scene file, and "
+                             "the curve's files where the model is a solve)")
     return parser
 
 
 def main(argv=None):
-    args = build_parser().parse_args(argv)
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if args.run != (args.out is not None):
+        parser.error("--run and --out go together: the model chosen is run into --out")
     scene = read_scene(args.scene)  # every key checked before anything is solved
+    out = output_folder(args.out, "--out", OWNER) if args.run else None
     print(f"mu = {scene.mu:.4g}, R/eps = {scene.scales.R / scene.scales.eps:.4g}: solving the "
           "scene at BEM draft to measure its effects ...", file=sys.stderr)
     advice = advise(scene)
     record = advice.records()
+    if args.run:
+        _run(advice, record, out, Path(args.scene).name)
     if args.json:
         dump_json(record)
         return 0
@@ -34,6 +52,29 @@ def main(argv=None):
     print_table(record["models"], ("name", "p_off", "p_off_N", "error", "cost_s"))
     print(f"\nchoice: {advice.message}")
     return 0
+
+
+def _run(advice, record, out, scene_name):
+    """The chosen model run and written into `out`, all or nothing: advice.json (the advice, and
+    the model's P̄off in N), the scene file as given, and curve/ (`fem_asperity.write_all`, SI)
+    where the model is a solve."""
+    print(f"running {advice.choice} ...", file=sys.stderr)
+    result = run_model(advice)
+    if result is not None:
+        s = advice.scene.scales
+        record["result"] = {"model": advice.choice, "p_off": result.events.p_off,
+                            "p_off_N": result.events.p_off * s.force,
+                            "error_estimate": result.error_estimate, "status": result.status}
+    else:
+        chosen = next(m for m in record["models"] if m["name"] == advice.choice)
+        record["result"] = {"model": advice.choice, "p_off": chosen["p_off"],
+                            "p_off_N": chosen["p_off_N"], "error": chosen["error"]}
+    with staged_folder(out, owner=OWNER) as stage:
+        write_atomic(stage / "advice.json", json.dumps(record, indent=1, allow_nan=False))
+        write_atomic(stage / scene_name, advice.scene.source)
+        if result is not None:
+            write_all(result, stage / "curve", advice.scene.scales)
+    print(f"wrote {out}", file=sys.stderr)
 
 
 if __name__ == "__main__":

@@ -68,13 +68,15 @@ class Model:
 
 @dataclass(frozen=True)
 class Advice:
-    """The scene, every effect, every model (cheapest first), the one chosen and why."""
+    """The scene, every effect, every model (cheapest first), the one chosen and why, and the
+    BEM draft solve of the whole scene the effects were measured with (`CurveResult`)."""
 
     scene: object
     effects: tuple[Effect, ...]
     models: tuple[Model, ...]
     choice: str
     message: str
+    draft: object = None
 
     def records(self):
         """A JSON-ready dict: the scene in SI, the effects, the models (P̄off in 2πRΔγ and in N)
@@ -129,9 +131,9 @@ def advise(scene, *, solve=None):
                              0.0))
     models.append(_model("table of solved laws", table[0] if table else None,
                          (TABLE,) + carried, size, None))
-    models.append(_model("BEM draft, the whole scene", solved["p_off"], (DRAFT,), size,
-                         solved["cost_s"]))
-    models.append(Model("BEM default, the whole scene", None, (), None, None))
+    draft, default = SOLVES
+    models.append(_model(draft, solved["p_off"], (DRAFT,), size, solved["cost_s"]))
+    models.append(Model(default, None, (), None, None))
     meets = [m for m in models if m.error is not None and m.error <= scene.tolerance]
     if meets:
         choice = meets[0]
@@ -142,9 +144,11 @@ def advise(scene, *, solve=None):
         message = ("no cheaper model is known to meet the tolerance "
                    f"{scene.tolerance:g}: the safe model, the BEM default solve of the whole "
                    "scene (python -m fem_asperity curve ... --method bem)")
-    return Advice(scene, tuple(effects), tuple(models), choice.name, message)
+    return Advice(scene, tuple(effects), tuple(models), choice.name, message, solved["result"])
 
 
+#: The models that solve the whole scene, by name: the accuracy preset each runs (`run`).
+SOLVES = {"BEM draft, the whole scene": "draft", "BEM default, the whole scene": "default"}
 #: Effect names.
 TABLE, DRAFT = "the table of solved laws instead of a solve", "BEM draft instead of default"
 DERJAGUIN = "Derjaguin's parabola instead of the exact sphere"
@@ -197,4 +201,21 @@ def _solved_effects(scene, solve):
         effects.append(Effect(name, abs(other.events.p_off / p_full - 1.0),
                               None if draft_error is None else 2.0 * draft_error,
                               "computed for this scene: two BEM draft solves"))
-    return {"p_off": p_full, "cost_s": cost, "effects": effects}
+    return {"p_off": p_full, "cost_s": cost, "effects": effects, "result": full}
+
+
+def run(advice, *, solve=None):
+    """The chosen model run: the `CurveResult` of its solve (the draft the advice already has,
+    or the BEM `default` solve of the whole scene with its error estimate), None for a closed
+    form or the table (their value is the model's `p_off`)."""
+    accuracy = SOLVES.get(advice.choice)
+    if accuracy is None:
+        return None
+    if accuracy == "draft":
+        return advice.draft
+    if solve is None:
+        from fem_asperity.solver.solve import solve_curve as solve
+    scene = advice.scene
+    return solve(scene.mu, method="bem", accuracy=accuracy, error_estimate=True,
+                 solid=scene.solid, radius_ratio=scene.scales.R / scene.scales.eps,
+                 spring_constant=scene.spring)

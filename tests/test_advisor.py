@@ -140,3 +140,29 @@ def test_outside_the_table_no_closed_form_is_chosen_and_the_safe_model_is_said(n
     assert size[TABLE] is None and size[DRAFT] == pytest.approx(0.1 / 0.7)
     assert all(m.error is None for m in advice.models if "closed form" in m.name)
     assert advice.choice == "BEM default, the whole scene" and "safe model" in advice.message
+
+
+def test_run_writes_the_chosen_models_answer_in_si_with_the_scene(tmp_path):
+    """Near DMT the chosen model is a closed form: advice.json holds its P̄off in N, the scene
+    file is copied as given, and no curve is solved; a second run replaces its own output, a
+    folder holding other files is refused before anything is computed."""
+    from advisor.__main__ import main
+
+    scene = EXAMPLES / "stiff_contact_near_dmt.toml"
+    out = tmp_path / "out"
+    assert main([str(scene), "--run", "--out", str(out)]) == 0
+    assert main([str(scene), "--run", "--out", str(out)]) == 0
+    record = json.loads((out / "advice.json").read_text())
+    chosen = next(m for m in record["models"] if m["name"] == record["choice"])
+    assert record["result"]["p_off_N"] == chosen["p_off_N"] and "closed form" in chosen["name"]
+    force = 2 * 3.141592653589793 * 50e-9 * 20e-3  # 2πRΔγ
+    assert record["result"]["p_off_N"] == pytest.approx(chosen["p_off"] * force)
+    assert (out / scene.name).read_text() == scene.read_text()
+    assert not (out / "curve").exists()
+    foreign = tmp_path / "foreign"
+    foreign.mkdir()
+    (foreign / "data.csv").write_text("mine")
+    with pytest.raises(InputError, match="--out"):
+        main([str(scene), "--run", "--out", str(foreign)])
+    with pytest.raises(SystemExit):
+        main([str(scene), "--run"])
