@@ -6,10 +6,11 @@ import sys
 from pathlib import Path
 
 from fem_asperity.plumbing.cli import Parser, dump_json, print_table, run
+from fem_asperity.plumbing.errors import InputError
 from fem_asperity.plumbing.files import output_folder, staged_folder, write_atomic
 from fem_asperity.solver.output import write_all
 
-from .advice import advise
+from .advice import WHOLE, advise
 from .advice import run as run_model
 from .scene import read_scene
 
@@ -37,38 +38,45 @@ def main(argv=None):
         parser.error("--run and --out go together: the model chosen is run into --out")
     scene = read_scene(args.scene)  # every key checked before anything is solved
     out = output_folder(args.out, "--out", OWNER) if args.run else None
-    print(f"mu = {scene.mu:.4g}, R/eps = {scene.scales.R / scene.scales.eps:.4g}: solving the "
-          "scene at BEM draft to measure its effects ...", file=sys.stderr)
+    if scene.surface is None:
+        print(f"mu = {scene.mu:.4g}, R/eps = {scene.scales.R / scene.scales.eps:.4g}: solving "
+              "the scene at BEM draft to measure its effects ...", file=sys.stderr)
     advice = advise(scene)
+    if args.run and advice.choice == WHOLE:
+        raise InputError(f"--run: the model chosen, {WHOLE}, needs the surface's height map: "
+                         "run python -m gw explicit --topography MAP ... (the advice without "
+                         "--run shows why)")
     record = advice.records()
     if args.run:
         _run(advice, record, out, Path(args.scene).name)
     if args.json:
         dump_json(record)
         return 0
-    print("Effects on the pull-off force (relative):")
+    what = {"pull_off": "the pull-off force", "f_max": "the surface's strength F_max"}
+    print(f"Effects on {what[scene.quantity]} (relative):")
     print_table(record["effects"], ("name", "size", "uncertainty", "how"))
     print("\nModels, cheapest first (error: the sum of the effects each leaves out):")
-    print_table(record["models"], ("name", "p_off", "p_off_N", "error", "cost_s"))
+    print_table(record["models"], ("name", "value", "value_si", "unit", "error", "cost_s"))
     print(f"\nchoice: {advice.message}")
     return 0
 
 
 def _run(advice, record, out, scene_name):
     """The chosen model run and written into `out`, all or nothing: advice.json (the advice, and
-    the model's P̄off in N), the scene file as given, and curve/ (`fem_asperity.write_all`, SI)
-    where the model is a solve."""
+    the model's value in SI), the scene file as given, and curve/ (`fem_asperity.write_all`,
+    SI) where the model is a solve. The whole rough surface is not run here (it needs a height
+    map): the advice says so."""
     print(f"running {advice.choice} ...", file=sys.stderr)
     result = run_model(advice)
     if result is not None:
         s = advice.scene.scales
-        record["result"] = {"model": advice.choice, "p_off": result.events.p_off,
-                            "p_off_N": result.events.p_off * s.force,
+        record["result"] = {"model": advice.choice, "value": result.events.p_off,
+                            "value_si": result.events.p_off * s.force, "unit": "N",
                             "error_estimate": result.error_estimate, "status": result.status}
     else:
         chosen = next(m for m in record["models"] if m["name"] == advice.choice)
-        record["result"] = {"model": advice.choice, "p_off": chosen["p_off"],
-                            "p_off_N": chosen["p_off_N"], "error": chosen["error"]}
+        record["result"] = {key: chosen[key] for key in ("value", "value_si", "unit", "error")}
+        record["result"]["model"] = advice.choice
     with staged_folder(out, owner=OWNER) as stage:
         write_atomic(stage / "advice.json", json.dumps(record, indent=1, allow_nan=False))
         write_atomic(stage / scene_name, advice.scene.source)

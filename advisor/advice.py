@@ -55,12 +55,12 @@ class Effect:
 
 @dataclass(frozen=True)
 class Model:
-    """A way to answer: its P̄off [2πRΔγ], the effects it leaves out and their summed `error`
-    (relative; None if one is not bounded), and its cost in seconds on this machine (measured
-    here where it was run, else None)."""
+    """A way to answer: its value of the quantity asked for (P̄off [2πRΔγ], or F̄max), the
+    effects it leaves out and their summed `error` (relative; None if one is not bounded), and
+    its cost in seconds on this machine (measured here where it was run, else None)."""
 
     name: str
-    p_off: float | None
+    value: float | None
     leaves_out: tuple[str, ...]
     error: float | None
     cost_s: float | None
@@ -79,18 +79,21 @@ class Advice:
     draft: object = None
 
     def records(self):
-        """A JSON-ready dict: the scene in SI, the effects, the models (P̄off in 2πRΔγ and in N)
-        and the choice."""
-        s = self.scene.scales
+        """A JSON-ready dict: the scene in SI, the effects, the models (the value
+        dimensionless and in SI: P̄off in N, F̄max as the tension per nominal area in Pa) and
+        the choice."""
+        s, surface = self.scene.scales, self.scene.surface
+        to_si, unit = ((s.force, "N") if surface is None
+                       else (s.force * surface["density"], "Pa"))
         return {
             "scene": {"mu": s.mu, "R_over_eps": s.R / s.eps, "E_star_Pa": s.E_star,
                       "dgamma_J_per_m2": s.dgamma, "eps_m": s.eps, "R_m": s.R,
                       "spring_N_per_m": self.scene.spring_si,
-                      "layer": _layer_record(self.scene.solid),
+                      "layer": _layer_record(self.scene.solid), "surface": surface,
                       "quantity": self.scene.quantity, "tolerance": self.scene.tolerance},
             "effects": [vars(e) for e in self.effects],
-            "models": [{**vars(m), "p_off_N": None if m.p_off is None else m.p_off * s.force}
-                       for m in self.models],
+            "models": [{**vars(m), "value_si": None if m.value is None else m.value * to_si,
+                        "unit": unit} for m in self.models],
             "choice": self.choice, "message": self.message,
         }
 
@@ -104,7 +107,9 @@ def _layer_record(solid):
 
 def advise(scene, *, solve=None):
     """The `Advice` for `scene` (a `scene.Scene`). solve: the curve solver (`solve_curve`
-    by default; tests pass a counting one)."""
+    by default; tests pass a stand-in)."""
+    if scene.surface is not None:
+        return _advise_surface(scene)
     if solve is None:
         from fem_asperity.solver.solve import solve_curve as solve
     mu = scene.mu
@@ -160,10 +165,10 @@ def _closed(name):
     return f"{name} closed form instead of a solve"
 
 
-def _model(name, p_off, leaves_out, size, cost):
+def _model(name, value, leaves_out, size, cost):
     sizes = [size.get(e) for e in leaves_out]
     error = None if any(s is None for s in sizes) else float(sum(sizes))
-    return Model(name, p_off, leaves_out, error, cost)
+    return Model(name, value, leaves_out, error, cost)
 
 
 def _table_pull_off(mu):
@@ -204,10 +209,85 @@ def _solved_effects(scene, solve):
     return {"p_off": p_full, "cost_s": cost, "effects": effects, "result": full}
 
 
+#: The rough surface's effects on F̄max and its safe model.
+PAPER_LAW, CORRECTED_LAW = ("the paper's law instead of the solved law",
+                            "the corrected law instead of the solved law")
+GROUND = "GW's ground between summits counted more than once"
+INTERACTION = "summits that do not feel each other (GW) instead of the surface solved whole"
+WHOLE = "the surface solved whole (python -m gw explicit on a height map)"
+
+
+def _advise_surface(scene):
+    """F̄max of a GW surface: each law against the table of solved laws, the ground between
+    summits counted once in closed form (`gw.shared_ground`); what GW leaves out beyond that
+    (the summits' elastic interaction, the ground lifted between them) is not bounded here."""
+    from gw.integrate import strength
+    from gw.laws import CorrectedLaw, PaperLaw
+    from gw.surface import RoughSurface
+
+    s, surface = scene.scales, scene.surface
+    sigma_r_eta = surface["sigma"] * s.R * surface["density"]
+    rough = RoughSurface.from_physical(sigma=surface["sigma"], radius=s.R,
+                                       density=surface["density"], eps=s.eps)
+    table = shipped_table()
+    lo, hi = table.mu_range
+    effects = [Effect(INTERACTION, None, None, "not measured for this scene",
+                      "docs/rough_explicit.md maps where GW and the interacting model hold "
+                      "on surfaces solved whole; `gw explicit` answers for a height map")]
+    cost = {}
+
+    def timed(name, law, **options):  # F̄max, its wall time kept as the model's cost
+        start = time.perf_counter()
+        found = strength(law, rough, **options).f_max
+        cost[name] = time.perf_counter() - start
+        return found
+
+    f_paper = timed("paper", PaperLaw(scene.mu))
+    f_corrected = timed("corrected", CorrectedLaw(scene.mu))
+    if lo <= scene.mu <= hi:
+        law = table.law(scene.mu)
+        f_table = timed("table", law)
+        f_once = timed("once", law, sigma_r_eta=sigma_r_eta)
+        effects += [
+            Effect(TABLE, law.f_max_error, None, "the table's measured F̄max error"),
+            Effect(PAPER_LAW, abs(f_paper / f_table - 1.0), law.f_max_error,
+                   "GW integrals with both laws"),
+            Effect(CORRECTED_LAW, abs(f_corrected / f_table - 1.0), law.f_max_error,
+                   "GW integrals with both laws"),
+            Effect(GROUND, abs(f_table / f_once - 1.0), None,
+                   f"closed form for summits at random places (sigma R eta = "
+                   f"{sigma_r_eta:.3g})")]
+    else:
+        f_table = f_once = None
+        effects += [Effect(name, None, None, "table lookup", f"mu = {scene.mu:.4g} is outside "
+                           f"the table of solved laws' {lo:g}-{hi:g}")
+                    for name in (TABLE, PAPER_LAW, CORRECTED_LAW, GROUND)]
+    size = {e.name: e.size for e in effects}
+    models = (
+        _model("GW, the paper's law", f_paper, (PAPER_LAW, TABLE, GROUND, INTERACTION), size,
+               cost["paper"]),
+        _model("GW, the corrected law", f_corrected, (CORRECTED_LAW, TABLE, GROUND,
+                                                      INTERACTION), size, cost["corrected"]),
+        _model("GW, the table of solved laws", f_table, (TABLE, GROUND, INTERACTION), size,
+               cost.get("table")),
+        _model("GW, the table, the ground counted once", f_once, (TABLE, INTERACTION), size,
+               cost.get("once")),
+        Model(WHOLE, None, (), None, None))
+    meets = [m for m in models if m.error is not None and m.error <= scene.tolerance]
+    if meets:
+        return Advice(scene, tuple(effects), models, meets[0].name,
+                      f"{meets[0].name}: the effects it leaves out sum to {meets[0].error:.2g}")
+    return Advice(scene, tuple(effects), models, WHOLE,
+                  "no GW model is known to meet the tolerance: what GW leaves out beyond the "
+                  "laws and the ground (the summits' interaction, the ground lifted between "
+                  f"them) is not bounded here; the safe model is {WHOLE}")
+
+
 def run(advice, *, solve=None):
     """The chosen model run: the `CurveResult` of its solve (the draft the advice already has,
     or the BEM `default` solve of the whole scene with its error estimate), None for a closed
-    form or the table (their value is the model's `p_off`)."""
+    form or the table (their value is the model's), and for the whole rough surface (it
+    needs a height map: `gw explicit`)."""
     accuracy = SOLVES.get(advice.choice)
     if accuracy is None:
         return None

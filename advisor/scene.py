@@ -20,6 +20,16 @@
     quantity = "pull_off"        # what the user asks for
     tolerance = 0.01             # relative
 
+A rough surface (GW: spherical summits of one radius at Gaussian heights) takes the place of the
+probe, and its strength F̄max is asked for (no layer or cantilever yet):
+
+    [surface]
+    sigma = "2 nm"               # rms of the summit heights
+    radius = "400 nm"            # the summits' radius
+    density = "40 /um^2"         # summits per nominal area
+    [want]
+    quantity = "f_max"
+
 A bad file is refused (`InputError`, one line naming the key) before anything is computed.
 """
 
@@ -45,18 +55,23 @@ UNITS = {
                "A": 1e-10, "Å": 1e-10},
     "energy per area": {"J/m^2": 1.0, "mJ/m^2": 1e-3, "N/m": 1.0, "mN/m": 1e-3},
     "stiffness": {"N/m": 1.0, "mN/m": 1e-3},
+    "per area": {"/m^2": 1.0, "/um^2": 1e12, "/µm^2": 1e12, "/nm^2": 1e18},
 }
 #: The keys of each section: (kind of value, required). Kinds: a unit kind of UNITS, 'ratio'
 #: (a plain number), or a tuple of the words allowed.
 SECTIONS = {
     "solid": {"E": ("pressure", False), "E_star": ("pressure", False), "nu": ("ratio", False)},
     "probe": {"radius": ("length", True), "E": ("pressure", False), "nu": ("ratio", False)},
+    "surface": {"sigma": ("length", True), "radius": ("length", True),
+                "density": ("per area", True)},
     "adhesion": {"work": ("energy per area", True), "eps": ("length", True)},
     "layer": {"thickness": ("length", True), "E": ("pressure", True), "nu": ("ratio", False)},
     "control": {"spring": ("stiffness", False)},
-    "want": {"quantity": (("pull_off",), True), "tolerance": ("ratio", True)},
+    "want": {"quantity": (("pull_off", "f_max"), True), "tolerance": ("ratio", True)},
 }
-REQUIRED_SECTIONS = ("solid", "probe", "adhesion", "want")
+REQUIRED_SECTIONS = ("solid", "adhesion", "want")
+#: What each body may be asked for.
+QUANTITIES = {"probe": "pull_off", "surface": "f_max"}
 #: The Poisson's ratio where a scene gives none (the package's default, `Solid`).
 DEFAULT_NU = 0.3
 _VALUE = re.compile(r"^\s*([-+0-9.eE]+)\s*(\S+)\s*$")
@@ -76,6 +91,7 @@ class Scene:
     quantity: str
     tolerance: float
     source: str
+    surface: dict | None = None
 
     @property
     def mu(self):
@@ -99,6 +115,17 @@ def parse_scene(text):
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"scene file: not TOML: {exc}") from None
     values = _checked(data)
+    bodies = [b for b in QUANTITIES if b in values]
+    if len(bodies) != 1:
+        raise InputError("probe, surface: give one of the two (a sphere, or a rough surface)")
+    body = bodies[0]
+    if values["want"]["quantity"] != QUANTITIES[body]:
+        raise InputError(f"want.quantity: a {body} scene asks for {QUANTITIES[body]}")
+    if body == "surface":
+        for other in ("layer", "control"):
+            if other in values:
+                raise InputError(f"{other}: a rough surface scene takes none yet")
+        values["probe"] = {"radius": values["surface"]["radius"]}
     solid, probe, adhesion = values["solid"], values["probe"], values["adhesion"]
     layer, control, want = values.get("layer"), values.get("control", {}), values["want"]
     if ("E" in solid) == ("E_star" in solid):
@@ -121,7 +148,8 @@ def parse_scene(text):
                         R=probe["radius"])
     return Scene(scales=scales, solid=_solid(layer, nu, scales), spring=_spring(control, scales),
                  spring_si=control.get("spring"), quantity=want["quantity"],
-                 tolerance=_tolerance(want["tolerance"]), source=text)
+                 tolerance=_tolerance(want["tolerance"]), source=text,
+                 surface=values.get("surface"))
 
 
 def _checked(data):

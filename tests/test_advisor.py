@@ -121,7 +121,7 @@ def test_on_a_soft_layer_every_simplification_fails_but_the_solve(tmp_path):
     assert size[HOMOGENEOUS] == pytest.approx(measured, abs=1e-4)
     record = advice.records()
     json.dumps(record, allow_nan=False)
-    assert record["scene"]["spring_N_per_m"] == 0.5 and record["models"][0]["p_off_N"] < 0
+    assert record["scene"]["spring_N_per_m"] == 0.5 and record["models"][0]["value_si"] < 0
 
 
 def test_outside_the_table_no_closed_form_is_chosen_and_the_safe_model_is_said(near_dmt):
@@ -154,9 +154,10 @@ def test_run_writes_the_chosen_models_answer_in_si_with_the_scene(tmp_path):
     assert main([str(scene), "--run", "--out", str(out)]) == 0
     record = json.loads((out / "advice.json").read_text())
     chosen = next(m for m in record["models"] if m["name"] == record["choice"])
-    assert record["result"]["p_off_N"] == chosen["p_off_N"] and "closed form" in chosen["name"]
+    assert record["result"]["value_si"] == chosen["value_si"] and "closed form" in chosen["name"]
     force = 2 * 3.141592653589793 * 50e-9 * 20e-3  # 2πRΔγ
-    assert record["result"]["p_off_N"] == pytest.approx(chosen["p_off"] * force)
+    assert record["result"]["value_si"] == pytest.approx(chosen["value"] * force)
+    assert record["result"]["unit"] == "N"
     assert (out / scene.name).read_text() == scene.read_text()
     assert not (out / "curve").exists()
     foreign = tmp_path / "foreign"
@@ -166,3 +167,44 @@ def test_run_writes_the_chosen_models_answer_in_si_with_the_scene(tmp_path):
         main([str(scene), "--run", "--out", str(foreign)])
     with pytest.raises(SystemExit):
         main([str(scene), "--run"])
+
+
+def test_a_rough_surface_scene_measures_each_law_and_says_what_gw_leaves_unbounded(tmp_path):
+    """The MEMS scene: the paper's law's effect on F̄max, predicted from the table, against a
+    law solved now (BEM `default`); the ground counted once lowers F̄max; what GW leaves out
+    beyond that is not bounded, so the safe model is the surface solved whole, which --run
+    refuses in one line (it needs a height map)."""
+    from advisor.__main__ import main
+    from advisor.advice import PAPER_LAW, WHOLE
+    from gw import RoughSurface, solved_law, strength
+    from gw.laws import PaperLaw
+
+    scene = read_scene(EXAMPLES / "mems_rough_surface.toml")
+    advice = advise(scene)
+    size = {e.name: e.size for e in advice.effects}
+    s, surface = scene.scales, scene.surface
+    rough = RoughSurface.from_physical(sigma=surface["sigma"], radius=s.R,
+                                       density=surface["density"], eps=s.eps)
+    solved = strength(solved_law(scene.mu, accuracy="default"), rough).f_max
+    measured = abs(strength(PaperLaw(scene.mu), rough).f_max / solved - 1.0)
+    assert size[PAPER_LAW] == pytest.approx(measured, abs=size[TABLE] + 1e-4)
+    values = {m.name: m.value for m in advice.models}
+    assert values["GW, the table, the ground counted once"] < values[
+        "GW, the table of solved laws"]
+    assert advice.choice == WHOLE and "not bounded" in advice.message
+    assert advice.records()["models"][0]["unit"] == "Pa"
+    with pytest.raises(InputError, match="--run: the model chosen"):
+        main([str(EXAMPLES / "mems_rough_surface.toml"), "--run", "--out", str(tmp_path / "o")])
+    assert not (tmp_path / "o").exists()
+
+
+def test_a_scene_has_one_body_and_asks_what_it_can_answer():
+    surface = GOOD.replace("[probe]\nradius = \"50 nm\"",
+                           "[surface]\nsigma = \"2 nm\"\nradius = \"0.4 um\"\n"
+                           "density = \"40 /um^2\"")
+    with pytest.raises(InputError, match="want.quantity: a surface scene asks for f_max"):
+        parse_scene(surface)
+    both = GOOD + "[surface]\nsigma = \"2 nm\"\nradius = \"0.4 um\"\ndensity = \"40 /um^2\"\n"
+    with pytest.raises(InputError, match="probe, surface: give one of the two"):
+        parse_scene(both)
+    assert parse_scene(surface.replace("pull_off", "f_max")).surface["density"] == 40e12
