@@ -8,14 +8,17 @@ for this scene:
   instead of a solve: read off the table (`gw.law_table`, the retraction's least force at the
   scene's μ), its own stated error added;
 - Derjaguin's parabola instead of the exact sphere, a homogeneous half-space instead of the
-  layer, a rigid holder instead of the cantilever: computed, each as the difference of two BEM
-  `draft` solves that differ in that one thing, its uncertainty the draft's error estimate;
+  layer: computed, each as the difference of two BEM `draft` solves that differ in that one
+  thing, its uncertainty twice the draft's error estimate;
+- a rigid holder instead of the cantilever: none on the pull-off force, exactly (the snap-out
+  comes where dP̄/dδ̄o = k̄ > 0, after the least force);
 - the BEM `draft` instead of `default`: the draft solve's own error estimate of P̄off.
 
-A model's error is the sum of the sizes of the effects it leaves out (a bound, not an
-estimate of their signed sum). Where an effect cannot be bounded (outside the table's μ) the
-models that need it are not chosen, and where no model is known to meet the tolerance the
-advice is the safe one, the BEM `default` solve of the whole scene, and says so.
+A model's error is the sum of the sizes and uncertainties of the effects it leaves out, each
+measured alone against its own reference: a first-order estimate, not a bound on effects that
+interact. Where an effect cannot be measured (outside the table's μ) the models that need it
+are not chosen, and where no model is known to meet the tolerance the advice is the safe one,
+the BEM `default` solve of the whole scene, and says so.
 """
 
 import time
@@ -130,10 +133,10 @@ def advise(scene, *, solve=None):
             p_law = law(mu)
             effects.append(Effect(_closed(name), abs(p_law / p_table - 1.0), table_error,
                                   "table lookup (against the solved P̄off)"))
-    size = {e.name: e.size for e in effects}
+    size = {e.name: _with_uncertainty(e) for e in effects}
     for name, law in CLOSED_FORMS.items():
-        models.append(_model(f"{name} closed form", law(mu), (_closed(name),) + carried, size,
-                             0.0))
+        models.append(_model(f"{name} closed form", law(mu), (_closed(name), TABLE) + carried,
+                             size, 0.0))
     models.append(_model("table of solved laws", table[0] if table else None,
                          (TABLE,) + carried, size, None))
     draft, default = SOLVES
@@ -143,7 +146,8 @@ def advise(scene, *, solve=None):
     if meets:
         choice = meets[0]
         message = (f"{choice.name}: the effects it leaves out sum to {choice.error:.2g} "
-                   f"<= the tolerance {scene.tolerance:g}")
+                   f"<= the tolerance {scene.tolerance:g} (each measured alone: a first-order "
+                   "estimate)")
     else:
         choice = models[-1]
         message = ("no cheaper model is known to meet the tolerance "
@@ -159,6 +163,13 @@ TABLE, DRAFT = "the table of solved laws instead of a solve", "BEM draft instead
 DERJAGUIN = "Derjaguin's parabola instead of the exact sphere"
 HOMOGENEOUS = "a homogeneous half-space instead of the layer"
 RIGID = "a rigid holder instead of the cantilever"
+
+
+def _with_uncertainty(effect):
+    """An effect's size with its uncertainty added (None where it is not measured)."""
+    if effect.size is None:
+        return None
+    return effect.size + (effect.uncertainty or 0.0)
 
 
 def _closed(name):
@@ -195,11 +206,13 @@ def _solved_effects(scene, solve):
     draft_error = None if estimate is None else estimate / abs(p_full)
     effects = [Effect(DRAFT, draft_error, None, "the draft solve's own error estimate",
                       "" if estimate is not None else f"no estimate: {full.message}")]
+    if scene.spring is not None:
+        effects.append(Effect(RIGID, 0.0, None, "exact for the pull-off force: the snap-out "
+                              "comes where dP/d(delta_o) = k > 0, after the least force"))
     variants = [(DERJAGUIN, {"radius_ratio": None})]
     if scene.solid.layer_thickness is not None:
-        variants.append((HOMOGENEOUS, {"solid": Solid(nu=scene.solid.nu, layer_nu=scene.solid.nu)}))
-    if scene.spring is not None:
-        variants.append((RIGID, {"spring_constant": None}))
+        variants.append((HOMOGENEOUS, {"solid": Solid(nu=scene.solid.nu,
+                                                      layer_nu=scene.solid.nu)}))
     for name, change in variants:
         other = solve(scene.mu, method="bem", accuracy="draft", error_estimate=False,
                       **(whole | change))
@@ -262,7 +275,7 @@ def _advise_surface(scene):
         effects += [Effect(name, None, None, "table lookup", f"mu = {scene.mu:.4g} is outside "
                            f"the table of solved laws' {lo:g}-{hi:g}")
                     for name in (TABLE, PAPER_LAW, CORRECTED_LAW, GROUND)]
-    size = {e.name: e.size for e in effects}
+    size = {e.name: _with_uncertainty(e) for e in effects}
     models = (
         _model("GW, the paper's law", f_paper, (PAPER_LAW, TABLE, GROUND, INTERACTION), size,
                cost["paper"]),
@@ -276,7 +289,8 @@ def _advise_surface(scene):
     meets = [m for m in models if m.error is not None and m.error <= scene.tolerance]
     if meets:
         return Advice(scene, tuple(effects), models, meets[0].name,
-                      f"{meets[0].name}: the effects it leaves out sum to {meets[0].error:.2g}")
+                      f"{meets[0].name}: the effects it leaves out sum to {meets[0].error:.2g} "
+                      "(each measured alone: a first-order estimate)")
     return Advice(scene, tuple(effects), models, WHOLE,
                   "no GW model is known to meet the tolerance: what GW leaves out beyond the "
                   "laws and the ground (the summits' interaction, the ground lifted between "

@@ -24,7 +24,7 @@ A rough surface (GW: spherical summits of one radius at Gaussian heights) takes 
 probe, and its strength F̄max is asked for (no layer or cantilever yet):
 
     [surface]
-    sigma = "2 nm"               # rms of the summit heights
+    sigma = "2 nm"               # rms roughness σ (McCool's eq. 20; GW's σ as in `gw`)
     radius = "400 nm"            # the summits' radius
     density = "40 /um^2"         # summits per nominal area
     [want]
@@ -40,8 +40,10 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from fem_asperity.closed_forms.scales import Scales, effective_modulus
+from fem_asperity.plumbing.checks import in_range, poisson
 from fem_asperity.plumbing.errors import DerjaguinWarning, InputError
 from fem_asperity.solids.fe import LAYER_THICKNESS, Solid
+from fem_asperity.solver.solve import SOFT_SPRING, SPRING_RANGE, solvable_mu
 
 try:  # Python 3.11+
     import tomllib
@@ -102,9 +104,11 @@ def read_scene(path):
     """The `Scene` of the TOML file at `path`."""
     path = Path(path)
     try:
-        text = path.read_text()
+        text = path.read_text(encoding="utf-8")
     except OSError as exc:
         raise InputError(f"scene file {path}: {exc.strerror or exc}") from None
+    except UnicodeDecodeError:
+        raise InputError(f"scene file {path}: not UTF-8 text (TOML is)") from None
     return parse_scene(text)
 
 
@@ -132,6 +136,12 @@ def parse_scene(text):
         raise InputError("solid: give E (with nu) or E_star, one of the two")
     if "E_star" in solid and "nu" in solid:
         raise InputError("solid.nu: E_star already holds the Poisson's ratio; give E with nu")
+    if "E_star" in solid and "E" in probe:
+        raise InputError("probe.E: E_star is the effective modulus of both bodies; give the "
+                         "solid's E and nu with an elastic probe")
+    for section in ("solid", "probe", "layer"):
+        if "nu" in values.get(section, {}):
+            poisson(f"{section}.nu", values[section]["nu"])
     if ("E" in probe) != ("nu" in probe):
         raise InputError("probe: an elastic probe needs both E and nu (omit both: rigid)")
     if layer is not None and "E" in probe:
@@ -146,6 +156,10 @@ def parse_scene(text):
         warnings.simplefilter("ignore", DerjaguinWarning)
         scales = Scales(E_star=E_star, dgamma=adhesion["work"], eps=adhesion["eps"],
                         R=probe["radius"])
+    if body == "surface":
+        _check_surface(values["surface"], scales)
+    else:
+        solvable_mu(scales.mu, "the scene's mu (from solid, probe and adhesion)")
     return Scene(scales=scales, solid=_solid(layer, nu, scales), spring=_spring(control, scales),
                  spring_si=control.get("spring"), quantity=want["quantity"],
                  tolerance=_tolerance(want["tolerance"]), source=text,
@@ -186,7 +200,10 @@ def _value(name, value, kind):
     if kind == "ratio":
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise InputError(f"{name}: must be a number; got {value!r}")
-        return _finite(name, float(value))
+        try:
+            return _finite(name, float(value))
+        except OverflowError:
+            raise InputError(f"{name}: must be finite; got {value!r}") from None
     units = UNITS[kind]
     if isinstance(value, (int, float)) and not isinstance(value, bool):
         raise InputError(f"{name}: give its unit, e.g. \"{value} {next(iter(units))}\" "
@@ -232,7 +249,24 @@ def _spring(control, scales):
     """k̄ of the cantilever (N/m → 2πRΔγ/ε), None for a rigid holder."""
     if "spring" not in control:
         return None
-    return control["spring"] * scales.eps / scales.force
+    per = scales.eps / scales.force
+    lo, hi = (k / per for k in SPRING_RANGE)
+    return in_range("control.spring", control["spring"], lo, hi, closed_lo=True, unit="N/m",
+                    why=SOFT_SPRING) * per
+
+
+def _check_surface(surface, scales):
+    """The GW surface of `surface` as `gw` takes it (ζ = σ/ε, ω from σRη), refused naming the
+    section where it does not."""
+    from gw.surface import RoughSurface
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        try:
+            RoughSurface.from_physical(sigma=surface["sigma"], radius=scales.R,
+                                       density=surface["density"], eps=scales.eps)
+        except (InputError, ArithmeticError, Warning) as exc:
+            raise InputError(f"surface: {exc}") from None
 
 
 def _tolerance(value):

@@ -16,7 +16,7 @@ from fem_asperity.closed_forms.laws import PAPER_LAWS
 from fem_asperity.plumbing.cli import shown
 from fem_asperity.plumbing.files import save_figure, write_atomic
 from fem_asperity.studies.refit import stored_refit
-from fem_asperity.studies.store import stored_curves
+from fem_asperity.studies.sweep import stored_curves
 from gw.integrate import strength, totals
 from gw.law_table import shipped_table
 from gw.laws import CorrectedLaw, PaperLaw

@@ -23,8 +23,7 @@ from fem_asperity.plumbing.files import write_atomic
 from fem_asperity.solver.output import state_index, write_fields
 from fem_asperity.solver.solve import solve_curve
 from fem_asperity.studies.onset import stored_onset
-from fem_asperity.studies.store import stored_curves
-from fem_asperity.studies.sweep import sweep
+from fem_asperity.studies.sweep import stored_curves, sweep
 
 from .single_figures import LOOP_MU, RADIUS_RATIO, save_figures
 

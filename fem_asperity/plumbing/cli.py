@@ -141,6 +141,11 @@ def shown(bars, label):
         yield None
         return
     bar = bars(label)
-    yield bar
+    try:
+        yield bar
+    except BaseException:  # the error's line starts on a line of its own
+        if bar.tty and bar.shown >= 0:
+            bar.stream.write("\n")
+        raise
     if bar.shown >= 0:
         bar.close()

@@ -23,7 +23,8 @@ from ..closed_forms.laws import AsperityLaws, wu_pull_off
 from ..plumbing.progress import share
 from ..plumbing.revision import code_revision
 from .onset import stored_onset
-from .store import cache_dir, stored_curves, stored_json
+from .store import cache_dir, stored_json
+from .sweep import stored_curves
 
 #: Tabor parameters of the refit: both regimes, on uniform BEM grids (below
 #: MU_TRACKING["bem"]), where a curve is cheap. Not pinned by a test (test_refit.py fits its own μ).

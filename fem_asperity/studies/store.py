@@ -25,10 +25,9 @@ import numpy as np
 from ..path.curve import Curve, Events, Jump, curve_from_columns
 from ..plumbing.errors import InputError
 from ..plumbing.files import nearest_existing, writable_folder, write_atomic
-from ..plumbing.progress import share
 from ..plumbing.revision import solver_revision
 from ..solids.fe import Solid
-from ..solver.presets import METHODS, PRESETS, relative_cost
+from ..solver.presets import METHODS, PRESETS
 from ..solver.result import curve_files, relative_estimate
 from ..solver.solve import estimate_kind, solvable_mu, solve_curve
 
@@ -309,14 +308,3 @@ def stored_curve(mu, *, method="bem", accuracy="default", error_estimate=False,
                  folder)
             stored = load_stored(folder)
     return stored
-
-
-def stored_curves(mus, *, method="bem", progress=None, **options):
-    """{μ: `StoredCurve`} for each of `mus`, one after the other (`stored_curve` with `method`
-    and `options`; a `sweep` solves on several processes instead). progress: callable(fraction
-    of the work done), told while a curve is solved (not when it is read), each μ's share of
-    the work its `relative_cost`."""
-    cost = np.array([relative_cost(mu, method, options.get("solid", Solid())) for mu in mus])
-    ends = np.cumsum(cost) / cost.sum()
-    return {mu: stored_curve(mu, method=method, progress=share(progress, end - c, end), **options)
-            for mu, c, end in zip(mus, cost / cost.sum(), ends)}

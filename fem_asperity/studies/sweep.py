@@ -35,6 +35,7 @@ from ..plumbing.checks import in_range
 from ..plumbing.cli import format_cell
 from ..plumbing.errors import InputError
 from ..plumbing.files import staged_folder, writable_folder, write_atomic
+from ..plumbing.progress import share
 from ..plumbing.version import __version__
 from ..solids.fe import Solid
 from ..solver.presets import relative_cost
@@ -51,6 +52,7 @@ from .store import (
     lock_entry,
     mu_key,
     solver_revision,
+    stored_curve,
     unlock_entry,
 )
 
@@ -395,6 +397,22 @@ def _unclaimed(todo, folders, run):
             unlock_entry(lock)
 
 
+def stored_curves(mus, *, method="bem", progress=None, **options):
+    """{μ: `StoredCurve`} for each of `mus`, one after the other (`stored_curve` with `method`
+    and `options`; a `sweep` solves on several processes instead). progress: callable(fraction
+    of the work done), told while a curve is solved, each curve not stored yet (its folder
+    absent) weighted by its `relative_cost`."""
+    keys = {k: options[k] for k in ("accuracy", "error_estimate", "unstable_branch", "solid",
+                                    "cache") if k in options}
+    todo = [mu for mu in mus if not curve_folder(mu, method=method, **(
+        {"accuracy": "default", "error_estimate": False} | keys)).exists()]
+    cost = {mu: relative_cost(mu, method, options.get("solid", Solid())) for mu in todo}
+    total, done, parts = sum(cost.values()), 0.0, {}
+    for mu in todo:
+        parts[mu] = share(progress, done / total, (done + cost[mu]) / total)
+        done += cost[mu]
+    return {mu: stored_curve(mu, method=method, progress=parts.get(mu), **options) for mu in mus}
+
 def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, estimate_by="auto",
           solid=Solid(), jobs=None, scheduler=None, cache=None, progress=None, scales=()):
     """Solve the curves at every μ of `mus` (those not stored yet) and return the `Sweep`.
@@ -429,7 +447,8 @@ def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, estimat
     todo = sorted((mu for mu in mus if stored[mu] is None), key=cost.get, reverse=True)
     if todo:  # before solving; a store that holds every μ is only read (it may be read-only)
         writable_folder(cache or cache_dir(), STORE)
-    failures, solved, done = {}, 0, 0.0
+    failures, solved, done, finished = {}, 0, 0.0, 0
+    total = sum(cost[mu] for mu in todo)
     args = (method, accuracy, error_estimate, solid, estimate_by)
 
     def run(batch):
@@ -444,9 +463,9 @@ def sweep(mus, *, method="fem", accuracy="default", error_estimate=True, estimat
                 keep(result, folders[mu])
                 solved += 1
             stored[mu] = load_stored(folders[mu])
-        done += cost[mu]
-        if progress is not None:
-            progress(done / sum(cost[m] for m in todo))
+        done, finished = done + cost[mu], finished + 1
+        if progress is not None:  # the last exactly 1: sums in another order differ by ulps
+            progress(1.0 if finished == len(todo) else done / total)
     rows = []
     for mu in mus:
         if mu in failures:
