@@ -142,18 +142,22 @@ def advise(scene, *, solve=None):
     draft, default = SOLVES
     models.append(_model(draft, solved["p_off"], (DRAFT,), size, solved["cost_s"]))
     models.append(Model(default, None, (), None, None))
+    return _chosen(scene, effects, models, "no cheaper model is known to meet the tolerance: "
+                   "the safe model, the BEM default solve of the whole scene (python -m "
+                   "fem_asperity curve ... --method bem)", solved["result"])
+
+
+def _chosen(scene, effects, models, otherwise, draft=None):
+    """The `Advice`: the cheapest of `models` whose error meets the scene's tolerance, else the
+    last (the safe one), said why in `otherwise`."""
     meets = [m for m in models if m.error is not None and m.error <= scene.tolerance]
-    if meets:
-        choice = meets[0]
-        message = (f"{choice.name}: the effects it leaves out sum to {choice.error:.2g} "
-                   f"<= the tolerance {scene.tolerance:g} (each measured alone: a first-order "
-                   "estimate)")
-    else:
-        choice = models[-1]
-        message = ("no cheaper model is known to meet the tolerance "
-                   f"{scene.tolerance:g}: the safe model, the BEM default solve of the whole "
-                   "scene (python -m fem_asperity curve ... --method bem)")
-    return Advice(scene, tuple(effects), tuple(models), choice.name, message, solved["result"])
+    if not meets:
+        return Advice(scene, tuple(effects), tuple(models), models[-1].name, otherwise, draft)
+    best = meets[0]
+    return Advice(scene, tuple(effects), tuple(models), best.name,
+                  f"{best.name}: the effects it leaves out sum to {best.error:.2g} <= the "
+                  f"tolerance {scene.tolerance:g} (each measured alone: a first-order estimate)",
+                  draft)
 
 
 #: The models that solve the whole scene, by name: the accuracy preset each runs (`run`).
@@ -286,15 +290,9 @@ def _advise_surface(scene):
         _model("GW, the table, the ground counted once", f_once, (TABLE, INTERACTION), size,
                cost.get("once")),
         Model(WHOLE, None, (), None, None))
-    meets = [m for m in models if m.error is not None and m.error <= scene.tolerance]
-    if meets:
-        return Advice(scene, tuple(effects), models, meets[0].name,
-                      f"{meets[0].name}: the effects it leaves out sum to {meets[0].error:.2g} "
-                      "(each measured alone: a first-order estimate)")
-    return Advice(scene, tuple(effects), models, WHOLE,
-                  "no GW model is known to meet the tolerance: what GW leaves out beyond the "
-                  "laws and the ground (the summits' interaction, the ground lifted between "
-                  f"them) is not bounded here; the safe model is {WHOLE}")
+    return _chosen(scene, effects, models, "no GW model is known to meet the tolerance: what "
+                   "GW leaves out beyond the laws and the ground (the summits' interaction, the "
+                   f"ground lifted between them) is not bounded here; the safe model is {WHOLE}")
 
 
 def run(advice, *, solve=None):
