@@ -211,3 +211,24 @@ def test_a_jump_across_a_periodic_edge_is_one_jump():
         assert on_corner.d == in_middle.d and on_corner.area == in_middle.area
         assert np.allclose((on_corner.x, on_corner.y), 0.0, atol=1e-6 * UNIT)
         assert np.allclose((in_middle.x, in_middle.y), n / 2 * pixel * UNIT)
+
+
+def test_the_convergence_tolerance_moves_the_paths_by_far_less_than_the_pixel_does():
+    """Caps at Gaussian heights on a free 48² map at μ = 1: relaxed to relax.TOLERANCE and to a
+    thousand times less, the force paths agree within 1e-6 of F̄max and the jumps are the same
+    (the pixel's own error, |Q(a) − Q(2a)|, is ~1e-3 of F̄max)."""
+    from gw.explicit import gaussian_caps, relax
+
+    pixel = 0.2 * UNIT
+    surface, _ = gaussian_caps(n=48, pixel=pixel, radius=RADIUS, sigma=2 * EPS,
+                               density=6 / (48 * pixel) ** 2, seed=3, periodic=False)
+    default = solve_whole(surface, adhesion_at(1.0), accuracy="draft", estimate=False)
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(relax, "TOLERANCE", 1e-3 * relax.TOLERANCE)
+        tight = solve_whole(surface, adhesion_at(1.0), accuracy="draft", estimate=False)
+    assert [(j.kind, j.d) for j in default.jumps] == [(j.kind, j.d) for j in tight.jumps]
+    assert len(default.jumps) >= 4
+    for a, b in ((default.approach, tight.approach), (default.retraction, tight.retraction)):
+        assert np.array_equal(a.d, b.d)
+        assert np.abs(a.force - b.force).max() < 1e-6 * default.force_max
+    assert tight.cost["hessian_products"] > default.cost["hessian_products"]

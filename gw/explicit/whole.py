@@ -31,7 +31,7 @@ from fem_asperity.plumbing.errors import InputError
 
 from .halfspace import PixelHalfSpace
 from .path import follow
-from .relax import BLAS_THREADS, LJMap
+from .relax import BLAS_THREADS, LJMap, keep_freed_memory
 
 #: Largest compliance number c = Δγ a/(π E* ε²) without a warning: the pixel a against the
 #: cohesive zone's elastic length E*ε²/Δγ (for caps c = μ^1.5 a/π, a in √(Rε)). One cap against
@@ -256,6 +256,7 @@ def _solve(heights, pixel, periodic, adhesion, top, step, lowest, resolution_eps
     Without `separations`, the approach runs from `top` down by `step` until the force turns
     compressive past its most tensile value (or to `lowest`, ε)."""
     started = time.perf_counter()
+    keep_freed_memory()
     space = PixelHalfSpace.build(heights.shape, compliance=adhesion.compliance(pixel),
                                  periodic=periodic)
     ljmap = LJMap(heights, space)
