@@ -94,6 +94,29 @@ def test_the_binned_overlap_is_the_pixel_sum(periodic):
         assert tails.force(d) == pytest.approx(exact, rel=1e-4, abs=1e-8)
 
 
+@pytest.mark.parametrize("periodic, n", [(False, 100), (True, 120)])
+def test_each_paraboloid_on_a_disc_of_pixels_is_the_whole_window(periodic, n, monkeypatch):
+    """Twelve caps on a map 25-30 √(Rε) wide: each paraboloid counted on the pixels of a disc
+    out to DISC_REACH and in closed form beyond it gives the T of the whole window of pixels
+    and its rays (the disc made too large to fit) within 1e-4, 2 ε above the highest apex to
+    1 ε into it."""
+    import gw.explicit.tails as tails_module
+
+    rng = np.random.default_rng(5)
+    pixel = 0.25
+    x, y = rng.uniform(0, n * pixel, (2, 12))
+    z = rng.normal(0, 1.0, 12)
+    ground = _caps(x, y, z, (n, n), pixel, periodic).max(axis=0)
+    separations = np.arange(z.max() + 2.0, z.max() - 1.0, -0.25)
+    assert np.sqrt(2 * (tails_module.DISC_REACH - separations.min() + z.max())) < n * pixel / 2
+    disc = SharedTails.build(x, y, z, ground, pixel=pixel, periodic=periodic,
+                             separations=separations).along(separations)
+    monkeypatch.setattr(tails_module, "DISC_REACH", 1e9)
+    window = SharedTails.build(x, y, z, ground, pixel=pixel, periodic=periodic,
+                               separations=separations).along(separations)
+    assert np.allclose(disc, window, rtol=1e-4, atol=0.0)
+
+
 def test_one_cap_loses_its_tail_beyond_its_cell():
     """One cap in a periodic cell 4 √(Rε) wide: the map within the cell is its paraboloid, so T
     is the paraboloid's attraction outside the square, φ̄(δ) less the square's (2-D quadrature),

@@ -21,9 +21,13 @@ left out of both sums, so that contacts that merge add nothing.
 
 The sums are kept as histograms of q (h = d + q; q = −z on the map, r²/2 − z_i on a
 paraboloid), binned by `Q_STEP` where a gap can come near contact and logarithmically beyond,
-so that T at each d is a sum over the bins. The window of pixels is the map's cell of nearest
-images if periodic, three times the map if free (no ground beyond the map); beyond it each
-paraboloid's tail is (1/2π)∫ φ̄(d − z_i + R(θ)²/2) dθ over the rays to the window's edge.
+so that T at each d is a sum over the bins. The map's ground is counted on its pixels. Each
+paraboloid is counted on the pixels of a disc about its apex, out to where its gap stays above
+DISC_REACH at every separation asked, and beyond the disc in closed form: ∫ p̄(h) dA/(2π) over
+r > ρ is φ̄(d − z_i + ρ²/2), ρ the disc's equal-area radius. Where the disc would not fit in the
+summit's window (the map's cell of nearest images if periodic, three times the map if free),
+the paraboloid is counted on the whole window and beyond it by (1/2π)∫ φ̄(d − z_i + R(θ)²/2) dθ
+over rays to the window's edge.
 """
 
 from dataclasses import dataclass
@@ -46,6 +50,9 @@ Q_STEP = 0.005
 Q_GROWTH = 1.02
 #: Gaps beyond which the fine bins stop (ε): p̄(10) is 3e-3 of the peak.
 FINE_REACH = 10.0
+#: Gap (ε) beyond which a paraboloid is taken continuous (its disc of pixels ends there): its
+#: pixels there differ from the closed form by under 1e-4 of T (test_tails.py: disc vs window).
+DISC_REACH = 30.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -90,20 +97,32 @@ class SharedTails:
             lo = np.broadcast_to(-side - pixel / 2, (x.size, 2))
             hi = np.broadcast_to(2 * side - pixel / 2, (x.size, 2))
         gx, gy = rows * pixel, cols * pixel
-        rays = _rays(np.stack([x, y], 1), lo, hi) ** 2 / 2.0 - z[:, None]
         d_lo, d_hi = float(separations.min()), float(separations.max())
-        reach = float(_squared(gx, gy, 0.0, 0.0, side, periodic).max()) / 2.0
+        disc = np.sqrt(2.0 * np.maximum(DISC_REACH - d_lo + z, 0.0))  # radius, √(Rε)
+        fits = disc < (side.min() / 2.0 if periodic else side.min())
+        caps, beyond = [], []  # (q, weight): pixels of the paraboloids, their parts beyond
+        for i in np.nonzero(fits)[0]:
+            r2 = _disc(x[i], y[i], disc[i], pixel)
+            caps.append((r2 / 2.0 - z[i], np.ones(r2.size)))
+            beyond.append((np.array([r2.size * pixel**2 / np.pi / 2.0 - z[i]]), np.ones(1)))
+        window = np.nonzero(~fits)[0]
+        for i in window:
+            caps.append((_squared(gx, gy, x[i], y[i], side, periodic).ravel() / 2.0 - z[i],
+                         np.ones(gx.size * gy.size)))
+        if window.size:
+            rays = _rays(np.stack([x[window], y[window]], 1), lo[window], hi[window])
+            q_rays = (rays**2 / 2.0 - z[window, None]).ravel()
+            beyond.append((q_rays, np.full(q_rays.size, 1.0 / ANGLES)))
         lowest = -max(float(z.max()), float(heights.max())) - 1.0
-        highest = max(reach - min(float(z.min()), float(heights.min())), float(rays.max()))
+        highest = max([-float(heights.min())] + [float(q.max(initial=-np.inf))
+                                                  for q, _ in caps + beyond])
         edges = _edges(lowest, CONTACT_GAP - d_hi, FINE_REACH - d_lo, highest + 1.0, d_lo)
-        ground = _histogram([-heights.ravel()], edges)
-        caps = _histogram((_squared(gx, gy, x[i], y[i], side, periodic).ravel() / 2.0 - z[i]
-                           for i in range(z.size)), edges)
-        beyond = _histogram([rays.ravel()], edges)
+        ground = _histogram([(-heights.ravel(), np.ones(heights.size))], edges)
+        caps, beyond = _histogram(caps, edges), _histogram(beyond, edges)
         area = pixel**2 / (2.0 * np.pi)
         return cls(np.concatenate([ground[0], caps[0]]),
                    np.concatenate([ground[1], -caps[1]]) * area,
-                   beyond[0], -beyond[1] / ANGLES, (d_lo, d_hi))
+                   beyond[0], -beyond[1], (d_lo, d_hi))
 
     def force(self, d):
         """T at separation `d` (ε, within the `separations` it was built for): F̄ (2πRΔγ,
@@ -139,14 +158,25 @@ def _rays(centres, lo, hi):
 
 
 def _histogram(fields, edges):
-    """(mean q, count) of the bins of `edges` that the q of `fields` (arrays) fall in."""
+    """(weighted mean q, summed weight) of the bins of `edges` that the (q, weight) arrays of
+    `fields` fall in."""
     counts, moments = np.zeros(edges.size - 1), np.zeros(edges.size - 1)
-    for q in fields:
+    for q, weight in fields:
         index = np.clip(np.searchsorted(edges, q, side="right") - 1, 0, edges.size - 2)
-        counts += np.bincount(index, minlength=edges.size - 1)
-        moments += np.bincount(index, weights=q, minlength=edges.size - 1)
+        counts += np.bincount(index, weights=weight, minlength=edges.size - 1)
+        moments += np.bincount(index, weights=weight * q, minlength=edges.size - 1)
     used = counts > 0.0
     return moments[used] / counts[used], counts[used]
+
+
+def _disc(x0, y0, radius, pixel):
+    """r² (√(Rε)²) from (x0, y0) at the pixel centres (i, j) × `pixel` within `radius` of it
+    (on the plane: a disc inside a periodic cell is its own nearest image)."""
+    def span(c):
+        return np.arange(np.ceil((c - radius) / pixel), np.floor((c + radius) / pixel) + 1)
+
+    r2 = ((span(x0) * pixel - x0)[:, None] ** 2 + (span(y0) * pixel - y0)[None, :] ** 2)
+    return r2[r2 < radius**2]
 
 
 def _squared(gx, gy, x0, y0, side, periodic):
