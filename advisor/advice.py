@@ -1,5 +1,6 @@
 """The cheapest model of a scene that meets its tolerance, with the measured size of every
-effect a model leaves out (issue 42; so far for the pull-off force of a sphere).
+effect a model leaves out (issue 42; so far the pull-off force of a sphere and the F̄max of a
+GW surface).
 
 Each effect is the relative change of the pull-off force P̄off that one simplification makes,
 for this scene:
@@ -13,6 +14,11 @@ for this scene:
 - a rigid holder instead of the cantilever: none on the pull-off force, exactly (the snap-out
   comes where dP̄/dδ̄o = k̄ > 0, after the least force);
 - the BEM `draft` instead of `default`: the draft solve's own error estimate of P̄off.
+
+For a rough surface's F̄max (GW), the laws are judged against the table and the ground between
+summits counted once in closed form; what GW leaves out beyond those, the summits' elastic
+interaction, is read off the measured map the package ships (`gw.explicit.measured_map`), and
+is unbounded outside it.
 
 A model's error is the sum of the sizes and uncertainties of the effects it leaves out, each
 measured alone against its own reference: a first-order estimate, not a bound on effects that
@@ -237,7 +243,8 @@ WHOLE = "the surface solved whole (python -m gw explicit on a height map)"
 def _advise_surface(scene):
     """F̄max of a GW surface: each law against the table of solved laws, the ground between
     summits counted once in closed form (`gw.shared_ground`); what GW leaves out beyond that
-    (the summits' elastic interaction, the ground lifted between them) is not bounded here."""
+    (the summits' elastic interaction, the ground lifted between them) read off the measured
+    map (`_interaction`), unbounded outside it."""
     from gw.integrate import strength
     from gw.laws import CorrectedLaw, PaperLaw
     from gw.surface import RoughSurface
@@ -248,9 +255,7 @@ def _advise_surface(scene):
                                        density=surface["density"], eps=s.eps)
     table = shipped_table()
     lo, hi = table.mu_range
-    effects = [Effect(INTERACTION, None, None, "not measured for this scene",
-                      "docs/rough_explicit.md maps where GW and the interacting model hold "
-                      "on surfaces solved whole; `gw explicit` answers for a height map")]
+    effects = [_interaction(scene.mu, surface["sigma"] / s.eps, sigma_r_eta)]
     cost = {}
 
     def timed(name, law, **options):  # F̄max, its wall time kept as the model's cost
@@ -290,9 +295,33 @@ def _advise_surface(scene):
         _model("GW, the table, the ground counted once", f_once, (TABLE, INTERACTION), size,
                cost.get("once")),
         Model(WHOLE, None, (), None, None))
-    return _chosen(scene, effects, models, "no GW model is known to meet the tolerance: what "
-                   "GW leaves out beyond the laws and the ground (the summits' interaction, the "
-                   f"ground lifted between them) is not bounded here; the safe model is {WHOLE}")
+    return _chosen(scene, effects, models, "no GW model is known to meet the tolerance (the "
+                   "effects each leaves out sum to more, or one is not bounded here): the safe "
+                   f"model is {WHOLE}")
+
+
+def _interaction(mu, zeta, sigma_r_eta):
+    """What GW leaves out beyond the laws and the ground counted once (the summits' elastic
+    interaction, the ground lifted between them), read off the measured map shipped with the
+    package (`gw.explicit.measured_map`): the error of GW's sum over the summits, the ground
+    counted once, against the surface solved whole, around the scene; unbounded outside the
+    map."""
+    from gw.explicit.measured_map import AXES, measured_error, shipped_map
+
+    found = measured_error("gw_cells", mu=mu, zeta=zeta, sigma_r_eta=sigma_r_eta)
+    if found is None:
+        shipped = shipped_map()
+        box = "no map is shipped" if shipped is None else "outside the measured map's " + (
+            ", ".join(f"{k} {min(v):g}-{max(v):g}" for k, v in shipped["axes"].items()))
+        return Effect(INTERACTION, None, None, "not measured for this scene",
+                      f"mu = {mu:.3g}, zeta = {zeta:.3g}, sigma R eta = {sigma_r_eta:.3g} is "
+                      f"{box} (docs/rough_explicit.md); python -m gw explicit answers for a "
+                      "height map")
+    around = "; ".join(f"{k} " + " and ".join(f"{v:g}" for v in found.around[k]) for k in AXES)
+    return Effect(INTERACTION, found.size, found.uncertainty,
+                  f"read from the measured map shipped with the package: the largest error of "
+                  f"GW's sum over the summits, the ground counted once, against the surface "
+                  f"solved whole, over the {found.surfaces} surfaces around the scene ({around})")
 
 
 def run(advice, *, solve=None):

@@ -234,3 +234,54 @@ def test_a_scene_has_one_body_and_asks_what_it_can_answer():
     with pytest.raises(InputError, match="probe, surface: give one of the two"):
         parse_scene(both)
     assert parse_scene(surface.replace("pull_off", "f_max")).surface["density"] == 40e12
+
+
+INSIDE_THE_MAP = """
+[solid]
+E = "1 GPa"
+nu = 0
+[surface]
+sigma = "2 nm"
+radius = "100 nm"
+density = "250 /um^2"
+[adhesion]
+work = "100 mJ/m^2"
+eps = "1 nm"
+[want]
+quantity = "f_max"
+tolerance = 0.1
+"""
+
+
+def test_inside_the_measured_map_gw_is_bounded_and_chosen(tmp_path):
+    """A GW surface at μ = 1, ζ = 2, σRη = 0.05, a point of the shipped map: the summits'
+    interaction is read off the map there (the larger error of GW's sum with the ground
+    counted once against the two draws solved whole), so GW with the table and the ground
+    counted once is bounded; within 10 % it is chosen, and --run writes its F̄max in Pa. A
+    point between grid points takes the largest error around it."""
+    from advisor.__main__ import main
+    from advisor.advice import INTERACTION
+    from gw.explicit.measured_map import measured_error
+
+    scene_file = tmp_path / "inside.toml"
+    scene_file.write_text(INSIDE_THE_MAP)
+    scene = read_scene(scene_file)
+    s, surface = scene.scales, scene.surface
+    zeta, sre = surface["sigma"] / s.eps, surface["sigma"] * s.R * surface["density"]
+    assert (scene.mu, zeta, sre) == pytest.approx((1.0, 2.0, 0.05), rel=1e-12)
+    advice = advise(scene)
+    effect = next(e for e in advice.effects if e.name == INTERACTION)
+    read = measured_error("gw_cells", mu=scene.mu, zeta=zeta, sigma_r_eta=sre)
+    assert read.surfaces == 2
+    assert (effect.size, effect.uncertainty) == (read.size, read.uncertainty)
+    between = measured_error("gw_cells", mu=0.9, zeta=zeta, sigma_r_eta=0.06)
+    assert between.surfaces == 8 and between.size >= read.size
+    assert "measured map" in effect.how
+    once = next(m for m in advice.models if m.name == "GW, the table, the ground counted once")
+    assert once.error is not None and once.error <= scene.tolerance
+    assert advice.choice == once.name  # the cheaper GW models count the ground too often
+    out = tmp_path / "o"
+    assert main([str(scene_file), "--run", "--out", str(out)]) == 0
+    result = json.loads((out / "advice.json").read_text())["result"]
+    assert result["model"] == once.name and result["unit"] == "Pa"
+    assert result["value"] == pytest.approx(once.value)

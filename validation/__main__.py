@@ -63,7 +63,9 @@ EXPLICIT_FILES = (
     ("rough_explicit/curves.png", "F against d for every model on the first surface"),
 )
 EXPLICIT_MAP_FILES = (("rough_explicit/map.png", "GW's and the interacting model's F_max error "
-                                                "over sigma R eta, per mu and zeta"),)
+                                                "over sigma R eta, per mu and zeta"),
+                      ("rough_explicit/rough_map.json", "the compact map the advisor reads "
+                                                        "(--ship: into the package too)"))
 
 LAYERED_FILES = (
     ("layered/report.md", "maps over thickness and modulus, limits, coated rough surface, FE "
@@ -87,6 +89,9 @@ def build_parser():
     explicit.add_argument("--full", action="store_true",
                           help="the map over mu, zeta and sigma R eta (many whole-surface "
                                "solves; stored, so an interrupted map resumes)")
+    explicit.add_argument("--ship", action="store_true",
+                          help="with --full: also write the compact map into the package "
+                               "(gw/data/rough_map.json, which the advisor reads)")
     layers = commands.add_parser("layered", help="layered media: maps over thickness and modulus, "
                                  "the homogeneous limits, a coated rough surface, FE vs BEM")
     for command in (single, rough, layers, explicit):
@@ -178,7 +183,8 @@ def _explicit(out, args, first_step, total, command):
     explicit = run_explicit(out, full=getattr(args, "full", False), jobs=args.jobs,
                             scheduler=args.scheduler,
                             step=lambda text: _step(next(steps, first_step), text, total),
-                            header=provenance(command))
+                            header=provenance(command), command=command,
+                            ship=getattr(args, "ship", False))
     holds = {name: sum(r["holds"][name] for r in explicit["scenes"])
              for name in explicit["scenes"][0]["holds"]}
     return explicit, {"rough_explicit": {"surfaces": len(explicit["scenes"]), "holds": holds}}
@@ -305,6 +311,8 @@ def main(argv=None):
         solvable_mu(args.mu, "--mu")
     if args.command in ("all", "rough-surface"):
         positive("--compare-mu", args.compare_mu)  # before anything is written
+    if getattr(args, "ship", False) and not args.full:
+        parser.error("--ship writes the map: it needs --full")
     output_folder(args.out, "--out", PROG)
     command = " ".join([PROG] + (sys.argv[1:] if argv is None else list(argv)))
     # All or nothing as a set: written into a staging folder, moved into --out at the end (each

@@ -13,10 +13,13 @@ import os
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import asdict
+from datetime import datetime, timezone
+from pathlib import Path
 
 import numpy as np
 
 from fem_asperity.plumbing.files import save_figure, write_atomic
+from fem_asperity.plumbing.provenance import git_commit
 from fem_asperity.plumbing.revision import code_revision, solver_revision
 from fem_asperity.studies.store import cache_dir, stored_curve
 from gw.explicit.compare import settled
@@ -25,11 +28,13 @@ from .report import counted
 
 #: The quick tier: six caps at μ = 1, ζ = 2, σRη = 0.05 (a 58² map; seconds).
 QUICK = ({"mu": 1.0, "zeta": 2.0, "sigma_r_eta": 0.05, "summits": 6},)
-#: The map: μ below and above the jump-in onset (0.697) at a pixel of 0.2 √(Rε) (compliance
-#: number ≤ 0.064, the cap check's resolution); ζ from smooth to rough beside ε; σRη from sparse
-#: to crowded summits (0.15: caps about 2.4 √(Rε) apart at ζ = 0.5). μ = 2 or 3 would need a
-#: pixel of 0.09 or 0.05 (4-16 times the pixels): left out of the map.
-MAP_MU, MAP_ZETA, MAP_SRE = (0.3, 1.0), (0.5, 2.0, 6.0), (0.02, 0.05, 0.15)
+#: The map: μ below and above the jump-in onset (0.697); ζ from smooth to rough beside ε; σRη
+#: from sparse to crowded summits (0.15: caps about 2.4 √(Rε) apart at ζ = 0.5). Pixels by
+#: `map_pixel`. μ = 3 would need 0.06 √(Rε), three times μ = 2's pixels: left out.
+MAP_MU, MAP_ZETA, MAP_SRE = (0.1, 0.3, 1.0, 2.0), (0.5, 2.0, 6.0), (0.02, 0.05, 0.15)
+#: The map's pixel (√(Rε)) where μ allows: compliance number μ^1.5 a/π = 0.064 at μ = 1, where
+#: one cap's F̄max was 8.5e-4 off the boundary integral (test_whole_surface.py).
+MAP_PIXEL = 0.2
 #: Summits per surface, and two draws of each surface: the spread between them is the
 #: sample's share of each model's error.
 MAP_SUMMITS, MAP_SEEDS = 16, (0, 1)
@@ -43,13 +48,24 @@ AFFINE = {"n": 128, "hurst": 0.8, "short": 12, "long": 64}
 AFFINE_MU, AFFINE_ZETA, AFFINE_SEEDS = (0.3, 1.0), (1.0, 2.0), (1, 2)
 
 
+def map_pixel(mu):
+    """The pixel (√(Rε)) of the map's surfaces at Tabor parameter `mu`: MAP_PIXEL, or finer
+    where the compliance number μ^1.5 a/π would pass the whole-surface solver's warning bound
+    (`whole.COMPLIANCE_MAX`, 0.1: 0.111 at μ = 2; its F̄max error there is a few 1e-3, beside
+    the map's 10 % verdicts)."""
+    from gw.explicit.whole import COMPLIANCE_MAX
+
+    return min(MAP_PIXEL, COMPLIANCE_MAX * np.pi / mu**1.5)
+
+
 def scenes(full):
     """The `Scene`s of the quick tier or of the map."""
     from gw.explicit import Scene
 
     if not full:
         return [Scene(**s) for s in QUICK]
-    return [Scene(mu=mu, zeta=zeta, sigma_r_eta=sre, summits=MAP_SUMMITS, seed=seed)
+    return [Scene(mu=mu, zeta=zeta, sigma_r_eta=sre, summits=MAP_SUMMITS, seed=seed,
+                  pixel=map_pixel(mu))
             for mu in MAP_MU for zeta in MAP_ZETA for sre in MAP_SRE for seed in MAP_SEEDS]
 
 
@@ -173,9 +189,13 @@ def _one_fft_thread():
     halfspace.FFT_WORKERS = 1
 
 
-def run(out, *, full=False, jobs=None, scheduler=None, step=print, header=""):
-    """Write out/rough_explicit/{report.md, rough_explicit.json, map.png (full), curves.png};
-    return the summary."""
+def run(out, *, full=False, jobs=None, scheduler=None, step=print, header="", command="",
+        ship=False):
+    """Write out/rough_explicit/{report.md, rough_explicit.json, curves.png, and with `full`
+    map.png and rough_map.json, the compact map (`gw.explicit.measured_map`), also into the
+    package with `ship`}; return the summary. `command`: what produced it, for the map."""
+    from gw.explicit.measured_map import MAP_FILE, map_record, save_map
+
     folder = out / "rough_explicit"
     start = time.perf_counter()
     records, affine = run_scenes(full, jobs=jobs, scheduler=scheduler, step=step)
@@ -184,6 +204,13 @@ def run(out, *, full=False, jobs=None, scheduler=None, step=print, header=""):
     save_figure(curves_figure(records[0]), folder / "curves.png")
     if full:
         save_figure(map_figure(records), folder / "map.png")
+        compact = map_record(records, {
+            "command": command, "commit": git_commit(Path(__file__).parent) or "unknown",
+            "solver_revision": solver_revision(), "accuracy": ACCURACY,
+            "date": datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")})
+        save_map(folder / "rough_map.json", compact)
+        if ship:
+            save_map(MAP_FILE, compact)
     write_atomic(folder / "rough_explicit.json",
                  json.dumps(summary, indent=1, allow_nan=False))
     write_atomic(folder / "report.md", "\n".join([header, "", section(summary)]) + "\n")
@@ -202,8 +229,9 @@ def section(summary):
     lines = ["## Is GW itself right? Rough surfaces solved whole", "",
              "GW surfaces made explicit: caps of one radius R at Gaussian heights (σ_s = σ, "
              "ω = 1) on random positions (`gw.explicit.compare`), each solved whole (FFT "
-             "half-space, periodic, LJ 9-3, approach and retraction with every jump; pixel 0.2 "
-             f"√(Rε), separation step at '{summary['accuracy']}'), as the sum over these "
+             "half-space, periodic, LJ 9-3, approach and retraction with every jump; pixel "
+             f"{_pixels(summary['scenes'])}, separation step at '{summary['accuracy']}'), as "
+             "the sum over these "
              "summits on the solved law (no interaction), as that sum with the ground between "
              "the summits counted once ('cells', `gw.explicit.tails`: each summit's law is a "
              "whole paraboloid's, whose LJ tail reaches over its neighbours' cells), as "
@@ -261,7 +289,8 @@ def section(summary):
                  + (f"on {len(short)} of them (μ = "
                     + ", ".join(f"{mu:g}" for mu in sorted({r["scene"]["mu"] for r in short}))
                     + ") still in tension ('stopped in tension' in the table: its F̄max is that "
-                    "of the path above, no answer)" if short else "")
+                    "of the path above, no answer; 'at its first separation': none at all)"
+                    if short else "")
                  + ("; " if short and len(short) < len(stopped) else "")
                  + ("on the others once the total force had turned compressive, its F̄max "
                     "behind it ('stopped in compression', the rule the whole surface's own "
@@ -291,6 +320,17 @@ def section(summary):
     return "\n".join(lines)
 
 
+def _pixels(records):
+    """'0.2 √(Rε)', or each pixel with the μ it was used at where they differ."""
+    by_pixel = {}
+    for r in records:
+        by_pixel.setdefault(r["scene"]["pixel"], set()).add(r["scene"]["mu"])
+    if len(by_pixel) == 1:
+        return f"{next(iter(by_pixel)):.3g} √(Rε)"
+    return "; ".join(f"{a:.3g} √(Rε) at μ = " + ", ".join(f"{mu:g}" for mu in sorted(mus))
+                     for a, mus in sorted(by_pixel.items(), reverse=True))
+
+
 def _span(values, form):
     """'17%' for one value (or all equal as written), else '12% to 31% (median 17%)'."""
     low, high = format(min(values), form), format(max(values), form)
@@ -304,6 +344,8 @@ def _stop(stopped, force):
     'in compression' (its F̄max behind it: `gw.explicit.compare.settled`)."""
     if not stopped:
         return ""
+    if not len(force):
+        return "at its first separation"
     return "in compression" if settled(True, force) else "in tension"
 
 

@@ -104,7 +104,8 @@ class ModelCurve:
     retraction None where the model has none), `f_max` (F̄max > 0, on approach), `d_at_max`
     (d̃), `f_off` (the most tensile F̄ on retraction, > 0), `jumps` (in, out), `seconds`, and
     `stopped` (d̄, ε: where the interacting model found no equilibrium and its path ends;
-    None where it did not)."""
+    None where it did not; where that is its first separation, its paths are empty, F̄max 0
+    and d_at_max there: no answer of its own)."""
 
     d: np.ndarray
     approach: np.ndarray
@@ -194,8 +195,8 @@ def settled(stopped, force):
     behind it (past there each contact's force only grows compressive; a summit still to touch
     would have to out-pull them all; the whole surface's own approach ends by the same rule,
     `whole._solve`). A path that stopped in tension has an F_max that is only that of the path
-    above."""
-    return stopped is None or bool(force[-1] >= 0.0)
+    above, or none where it stopped at its first separation."""
+    return stopped is None or bool(len(force) and force[-1] >= 0.0)
 
 
 def visible(caps, size, periodic):
@@ -231,6 +232,9 @@ def _summit_curve(paths, tails, sigma, count, tails_seconds=0.0):
 
     jumps = (sum(j[0] == "in" for j in up.jumps + down.jumps),
              sum(j[0] == "out" for j in up.jumps + down.jumps))
+    if up.d.size == 0:  # no equilibrium at the first separation: no F̄max of its own
+        return ModelCurve(up.d, up.force, None, 0.0, up.stopped / sigma, None, jumps,
+                          seconds + tails_seconds, up.stopped)
     return _curve(up.d / sigma, force(up) / count, _padded(force(down)[::-1], up.d.size) / count,
                   jumps, seconds + tails_seconds, up.stopped)
 

@@ -170,9 +170,9 @@ class LJMap:
         state is not stable, and that direction (downhill), or −∇E if it comes first, is
         returned with unstable = True. The conjugate gradients run in single precision (a
         product H v takes two FFTs; the vectors' updates are BLAS calls in place, half the
-        memory traffic of double's): the direction only needs a relative residual of
-        NEWTON_FORCING (at least 1e-5 before TOLERANCE is met), and a Hessian off by ~1e-7
-        does not move the converged state, which the double-precision gradient decides."""
+        memory traffic of double's): the direction only needs the relative residual above,
+        far coarser than single precision's 1e-7, and a Hessian off by ~1e-7 does not move the
+        converged state, which the double-precision gradient decides."""
         space = self.halfspace
         shape = point.gradient.shape
         root_in, root_out = self._root_in, self._root_out

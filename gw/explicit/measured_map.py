@@ -1,0 +1,101 @@
+"""The measured map of where GW holds, shipped with the package so that a scene's GW error is
+read, not solved.
+
+The map is `validation rough-explicit --full`'s: GW surfaces made explicit over a grid of
+(μ, ζ, σRη), two draws each, solved whole and by every cheaper model (`compare`). It ships as
+MAP_FILE (`python -m validation rough-explicit --full --ship` rewrites it): per surface its
+grid point, the whole surface's relative error estimate, and each model's F̄max error against
+the whole surface (None where the model's path stopped in tension: no answer of its own).
+`measured_error` reads off a model's error around a scene inside the map's box.
+"""
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from fem_asperity.plumbing.files import write_atomic
+
+MAP_FILE = Path(__file__).parents[1] / "data" / "rough_map.json"
+#: The grid's axes, in the order `measured_error` brackets them.
+AXES = ("mu", "zeta", "sigma_r_eta")
+#: A value within this relative distance of a grid value is on it (a scene's μ from E*, R, Δγ
+#: and ε in SI carries rounding of ~1e-15; the map's own values are written to ~1e-16).
+ON_GRID = 1e-6
+
+
+@dataclass(frozen=True)
+class MeasuredError:
+    """A model's F̄max error read off the map around a point: `size` (the largest |error| over
+    the `surfaces` solved at the grid points that bracket it), `uncertainty` (the largest of
+    their whole surfaces' relative estimates), `around` (each axis's bracketing values)."""
+
+    size: float
+    uncertainty: float
+    surfaces: int
+    around: dict
+
+
+def map_record(records, provenance):
+    """The compact map (a JSON-ready dict) of `records` (validation.rough_explicit's, one per
+    surface) with `provenance` (dict: command, commit, solver revision, date)."""
+    from .compare import settled
+
+    surfaces = []
+    for r in records:
+        whole = r["models"]["whole"]["f_max"]
+        errors = {name: (r["errors"][name] if settled(m["stopped"], m["approach"]) else None)
+                  for name, m in r["models"].items() if name != "whole"}
+        surfaces.append({**{k: r["scene"][k] for k in AXES + ("seed", "pixel", "summits")},
+                         "estimate": r["estimate"] / whole, "errors": errors})
+    return {"provenance": provenance,
+            "axes": {k: sorted({s[k] for s in surfaces}) for k in AXES},
+            "surfaces": surfaces}
+
+
+def save_map(path, record):
+    """Write the map `record` to `path` (JSON, atomically)."""
+    write_atomic(Path(path), json.dumps(record, indent=1, allow_nan=False) + "\n")
+
+
+def shipped_map():
+    """The map shipped with the package (MAP_FILE), None if it is missing."""
+    if not MAP_FILE.exists():
+        return None
+    return json.loads(MAP_FILE.read_text())
+
+
+def _bracket(values, x):
+    """The grid values around `x` (itself if within ON_GRID of one, else the neighbours below
+    and above), None outside [min, max]."""
+    values = np.asarray(values, dtype=float)
+    if not values[0] * (1 - ON_GRID) <= x <= values[-1] * (1 + ON_GRID):
+        return None
+    on = np.isclose(np.log(values), np.log(x), rtol=0.0, atol=ON_GRID)
+    if on.any():
+        return [float(values[on][0])]
+    k = int(np.searchsorted(values, x))
+    return [float(values[k - 1]), float(values[k])]
+
+
+def measured_error(model, *, mu, zeta, sigma_r_eta, record=None):
+    """`MeasuredError` of `model` (a name of `compare.MODELS` but 'whole') at (μ, ζ, σRη) from
+    the map (`record`, by default the shipped one): the largest over the grid points that
+    bracket it on every axis (up to eight, each with its draws), a first-order reading (the
+    error between grid points is taken as no larger than at them). None outside the map's
+    box, or where a surface there has no answer of the model's."""
+    record = shipped_map() if record is None else record
+    if record is None:
+        return None
+    point = {"mu": mu, "zeta": zeta, "sigma_r_eta": sigma_r_eta}
+    around = {k: _bracket(record["axes"][k], point[k]) for k in AXES}
+    if any(v is None for v in around.values()):
+        return None
+    near = [s for s in record["surfaces"]
+            if all(any(np.isclose(s[k], v, rtol=1e-9) for v in around[k]) for k in AXES)]
+    errors = [s["errors"].get(model) for s in near]
+    if not near or any(e is None for e in errors):
+        return None
+    return MeasuredError(float(max(abs(e) for e in errors)),
+                         float(max(s["estimate"] for s in near)), len(near), around)

@@ -1,0 +1,82 @@
+"""The measured map of where GW holds (gw.explicit.measured_map): reading a model's error off it
+around a point, and the shipped map against a surface of it solved again."""
+
+import numpy as np
+import pytest
+
+from gw.explicit import Scene, compare
+from gw.explicit.measured_map import map_record, measured_error, shipped_map
+
+
+def _surface(mu, zeta, sre, seed, cells, interacting=0.0):
+    return {"mu": mu, "zeta": zeta, "sigma_r_eta": sre, "seed": seed, "pixel": 0.2,
+            "summits": 16, "estimate": 0.01 * mu,
+            "errors": {"gw_cells": cells, "interacting": interacting}}
+
+
+@pytest.fixture
+def grid():
+    """Two μ, two ζ, two σRη, two draws: |gw_cells| = 0.1 μ ζ σRη × (1 + seed)."""
+    surfaces = [_surface(mu, zeta, sre, seed, -0.1 * mu * zeta * sre * (1 + seed),
+                         None if (mu, zeta, sre) == (1.0, 2.0, 0.15) else 0.0)
+                for mu in (0.3, 1.0) for zeta in (0.5, 2.0) for sre in (0.05, 0.15)
+                for seed in (0, 1)]
+    return {"axes": {"mu": [0.3, 1.0], "zeta": [0.5, 2.0], "sigma_r_eta": [0.05, 0.15]},
+            "surfaces": surfaces}
+
+
+def test_a_point_between_grid_points_takes_the_largest_error_around_it(grid):
+    found = measured_error("gw_cells", mu=0.5, zeta=1.0, sigma_r_eta=0.1, record=grid)
+    assert found.surfaces == 16  # eight corners, two draws each
+    assert found.size == pytest.approx(0.1 * 1.0 * 2.0 * 0.15 * 2)
+    assert found.uncertainty == pytest.approx(0.01)
+    assert found.around == {"mu": [0.3, 1.0], "zeta": [0.5, 2.0], "sigma_r_eta": [0.05, 0.15]}
+
+
+def test_a_point_on_the_grid_takes_its_own_surfaces(grid):
+    found = measured_error("gw_cells", mu=0.3, zeta=0.5, sigma_r_eta=0.05, record=grid)
+    assert found.surfaces == 2
+    assert found.size == pytest.approx(0.1 * 0.3 * 0.5 * 0.05 * 2)
+    on_an_edge = measured_error("gw_cells", mu=0.3, zeta=1.0, sigma_r_eta=0.05, record=grid)
+    assert on_an_edge.surfaces == 4 and on_an_edge.around["zeta"] == [0.5, 2.0]
+
+
+def test_outside_the_box_or_without_an_answer_nothing_is_read(grid):
+    assert measured_error("gw_cells", mu=0.2, zeta=1.0, sigma_r_eta=0.1, record=grid) is None
+    assert measured_error("gw_cells", mu=0.5, zeta=1.0, sigma_r_eta=0.2, record=grid) is None
+    # the interacting model stopped in tension on one corner: no bound around it
+    assert measured_error("interacting", mu=0.5, zeta=1.0, sigma_r_eta=0.1,
+                          record=grid) is None
+    assert measured_error("interacting", mu=0.3, zeta=0.5, sigma_r_eta=0.05,
+                          record=grid).size == 0.0
+
+
+def test_the_compact_map_keeps_each_error_and_drops_a_path_that_stopped_in_tension():
+    record = {"scene": {"mu": 1.0, "zeta": 2.0, "sigma_r_eta": 0.05, "seed": 0, "pixel": 0.2,
+                        "summits": 16},
+              "estimate": 0.004, "errors": {"gw_cells": 0.03, "interacting": -0.7},
+              "models": {"whole": {"f_max": 0.4, "stopped": None, "approach": [-0.1, 0.1]},
+                         "gw_cells": {"stopped": None, "approach": [-0.2, 0.1]},
+                         "interacting": {"stopped": 3.0, "approach": [-0.1, -0.2]}}}
+    compact = map_record([record], {"command": "test"})
+    surface = compact["surfaces"][0]
+    assert surface["errors"] == {"gw_cells": 0.03, "interacting": None}
+    assert surface["estimate"] == pytest.approx(0.01)
+    assert compact["axes"] == {"mu": [1.0], "zeta": [2.0], "sigma_r_eta": [0.05]}
+
+
+def test_the_shipped_map_is_what_the_solver_gives_now():
+    """One surface of the shipped map solved again (the cheapest: 37² pixels): each model's
+    F̄max error as shipped, so a map made by another solver fails here and is made again
+    (python -m validation rough-explicit --full --ship)."""
+    shipped = shipped_map()
+    assert shipped is not None
+    surface = min(shipped["surfaces"],
+                  key=lambda s: (s["zeta"] / s["sigma_r_eta"] / s["pixel"] ** 2, s["mu"]))
+    found = compare(Scene(mu=surface["mu"], zeta=surface["zeta"],
+                          sigma_r_eta=surface["sigma_r_eta"], summits=surface["summits"],
+                          seed=surface["seed"], pixel=surface["pixel"]), accuracy="draft")
+    for name, error in surface["errors"].items():
+        if error is not None:
+            assert found.errors[name] == pytest.approx(error, rel=1e-4, abs=1e-6), name
+    assert np.isfinite(surface["estimate"])
