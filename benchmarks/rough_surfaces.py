@@ -18,6 +18,7 @@ from fem_asperity.studies.store import stored_curve
 from gw.explicit import Adhesion, Scene, Topography, compare, gaussian_caps, solve_whole
 from gw.explicit.other_engine import other_engine_forces
 from gw.explicit.patch import force_beyond
+from gw.explicit.relax import keep_freed_memory
 
 EPS, RADIUS, DGAMMA = 0.3e-9, 300e-9, 0.05
 UNIT = np.sqrt(RADIUS * EPS)
@@ -95,6 +96,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     add_output_options(parser)
     args = parser.parse_args()
+    keep_freed_memory()  # as the package's commands do (gw explicit, validation)
     prov = provenance()
     # (n, periodic, with the other engine, accuracy): its free 256² solve is left out (the free
     # 128² row shows it several times slower than ours there); the free 256² map at 'draft'

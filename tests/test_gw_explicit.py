@@ -156,21 +156,21 @@ def test_a_surface_whose_interacting_model_has_no_first_equilibrium_is_compared_
         monkeypatch):
     """GW made explicit with the far field forced to 50 between every pair of summits: the
     interacting model finds no equilibrium at the first separation; the comparison records it
-    as no answer (F̄max 0, stopped there, never holding) instead of failing, and the map's
-    record of it is valid JSON with no error for that model."""
+    as no answer (no F̄max, no error, stopped there, never holding) instead of failing, the
+    report shows '—', and the map's record of it is valid JSON with no error for that model."""
     from gw.explicit import Scene, compare
     from gw.explicit.measured_map import map_record
-    from validation.rough_explicit import _stop
+    from validation.rough_explicit import _cell
 
     module = sys.modules["gw.explicit.compare"]  # the package's name is the function
     monkeypatch.setattr(module, "coupling",
                         lambda rows, cols, **_: 50.0 * (1.0 - np.eye(len(rows))))
     found = compare(Scene(mu=1.0, zeta=2.0, sigma_r_eta=0.05, summits=6), accuracy="draft")
     model = found.models["interacting"]
-    assert model.d.size == 0 and model.stopped is not None and model.f_max == 0.0
-    assert not found.holds["interacting"] and found.errors["interacting"] == -1.0
+    assert model.d.size == 0 and model.stopped is not None and model.f_max is None
+    assert not found.holds["interacting"] and found.errors["interacting"] is None
     assert not settled(model.stopped, model.approach)
-    assert _stop(True, model.approach) == "at its first separation"
+    assert _cell(found.errors["interacting"], False) == "— ✗"
     record = {"scene": {"mu": 1.0, "zeta": 2.0, "sigma_r_eta": 0.05, "seed": 0, "pixel": 0.2,
                         "summits": 6}, "estimate": found.estimate, "errors": found.errors,
               "models": {name: {"f_max": m.f_max, "stopped": m.stopped,

@@ -4,8 +4,9 @@ around a point, and the shipped map against a surface of it solved again."""
 import numpy as np
 import pytest
 
+from fem_asperity.plumbing.errors import InputError
 from gw.explicit import Scene, compare
-from gw.explicit.measured_map import map_record, measured_error, shipped_map
+from gw.explicit.measured_map import ON_GRID, map_record, measured_error, shipped_map
 
 
 def _surface(mu, zeta, sre, seed, cells, interacting=0.0):
@@ -46,9 +47,24 @@ def test_outside_the_box_or_without_an_answer_nothing_is_read(grid):
     assert measured_error("gw_cells", mu=0.5, zeta=1.0, sigma_r_eta=0.2, record=grid) is None
     # the interacting model stopped in tension on one corner: no bound around it
     assert measured_error("interacting", mu=0.5, zeta=1.0, sigma_r_eta=0.1,
-                          record=grid) is None
+                          record=grid).size is None
     assert measured_error("interacting", mu=0.3, zeta=0.5, sigma_r_eta=0.05,
                           record=grid).size == 0.0
+    with pytest.raises(InputError, match="model must be one of gw_cells, interacting"):
+        measured_error("gw_cellz", mu=0.5, zeta=1.0, sigma_r_eta=0.1, record=grid)
+
+
+def test_a_point_at_the_edge_of_the_box_is_on_it_not_across_it(grid):
+    """Within ON_GRID of the lowest μ the point is on that grid value (never bracketed by the
+    top and bottom of the axis); a little farther it is outside."""
+    below = measured_error("gw_cells", mu=0.3 * (1 - 0.5 * ON_GRID), zeta=0.5,
+                           sigma_r_eta=0.05, record=grid)
+    assert below.around["mu"] == [0.3] and below.surfaces == 2
+    above = measured_error("gw_cells", mu=1.0 * (1 + 0.5 * ON_GRID), zeta=2.0,
+                           sigma_r_eta=0.15, record=grid)
+    assert above.around["mu"] == [1.0]
+    assert measured_error("gw_cells", mu=0.3 * (1 - 2 * ON_GRID), zeta=0.5,
+                          sigma_r_eta=0.05, record=grid) is None
 
 
 def test_the_compact_map_keeps_each_error_and_drops_a_path_that_stopped_in_tension():
@@ -66,13 +82,13 @@ def test_the_compact_map_keeps_each_error_and_drops_a_path_that_stopped_in_tensi
 
 
 def test_the_shipped_map_is_what_the_solver_gives_now():
-    """One surface of the shipped map solved again (the cheapest: 37² pixels): each model's
-    F̄max error as shipped, so a map made by another solver fails here and is made again
-    (python -m validation rough-explicit --full --ship)."""
+    """One surface of the shipped map solved again (the cheapest at μ = 1, where caps jump in:
+    37² pixels): each model's F̄max error as shipped, so a map made by another solver fails
+    here and is made again (python -m validation rough-explicit --full --ship)."""
     shipped = shipped_map()
     assert shipped is not None
-    surface = min(shipped["surfaces"],
-                  key=lambda s: (s["zeta"] / s["sigma_r_eta"] / s["pixel"] ** 2, s["mu"]))
+    surface = min((s for s in shipped["surfaces"] if s["mu"] == 1.0),
+                  key=lambda s: (s["zeta"] / s["sigma_r_eta"] / s["pixel"] ** 2, s["seed"]))
     found = compare(Scene(mu=surface["mu"], zeta=surface["zeta"],
                           sigma_r_eta=surface["sigma_r_eta"], summits=surface["summits"],
                           seed=surface["seed"], pixel=surface["pixel"]), accuracy="draft")

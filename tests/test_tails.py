@@ -74,7 +74,8 @@ def _beyond(x, y, z, shape, pixel, periodic, d):
 @pytest.mark.parametrize("periodic", [True, False])
 def test_the_binned_overlap_is_the_pixel_sum(periodic):
     """Nine caps on a 40² map, one not taken as a summit (as a cap under another is not): T
-    from the bins and rays within 1e-4 of the pixel sum and the quadrature beyond the window,
+    from the bins (and the rays where the periodic cell is too small for a disc) within 1e-4 of
+    the pixel sum and the quadrature beyond the window,
     at separations from where the highest apex is 0.5 ε off, in contact already (its pixels
     fill the one bin below the fine ones: in contact at every separation asked), to 0.6 ε
     into it."""

@@ -22,6 +22,7 @@ from fem_asperity.plumbing.files import output_folder, save_figure, staged_folde
 from fem_asperity.plumbing.provenance import git_commit
 from fem_asperity.solver.presets import PRESETS
 from fem_asperity.solver.solve import solvable_mu
+from gw.explicit.relax import keep_freed_memory
 
 from .closed_forms import closed_form_checks
 from .law_figure import law_table, plot_laws
@@ -183,8 +184,7 @@ def _explicit(out, args, first_step, total, command):
     explicit = run_explicit(out, full=getattr(args, "full", False), jobs=args.jobs,
                             scheduler=args.scheduler,
                             step=lambda text: _step(next(steps, first_step), text, total),
-                            header=provenance(command), command=command,
-                            ship=getattr(args, "ship", False))
+                            header=provenance(command), command=command)
     holds = {name: sum(r["holds"][name] for r in explicit["scenes"])
              for name in explicit["scenes"][0]["holds"]}
     return explicit, {"rough_explicit": {"surfaces": len(explicit["scenes"]), "holds": holds}}
@@ -314,12 +314,18 @@ def main(argv=None):
     if getattr(args, "ship", False) and not args.full:
         parser.error("--ship writes the map: it needs --full")
     output_folder(args.out, "--out", PROG)
+    keep_freed_memory()  # this process is ours: large maps' fields are reused, not refaulted
     command = " ".join([PROG] + (sys.argv[1:] if argv is None else list(argv)))
     # All or nothing as a set: written into a staging folder, moved into --out at the end (each
     # file or folder of the set replacing its namesake; what the other commands of validation
     # wrote there stays, and so does what none of them wrote).
     with staged_folder(args.out, owner=PROG, whole=False) as stage:
         summary = {"out": str(args.out), **_run(args, command, stage)}
+    if getattr(args, "ship", False):  # once the whole set is in --out
+        from gw.explicit.measured_map import MAP_FILE
+
+        write_atomic(MAP_FILE, (args.out / "rough_explicit" / "rough_map.json").read_text())
+        print(f"wrote {MAP_FILE}", file=sys.stderr)
     if args.json:
         dump_json(summary)
     else:

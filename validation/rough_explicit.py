@@ -184,17 +184,20 @@ def run_scenes(full, *, jobs=None, scheduler=None, step=print):
 
 
 def _one_fft_thread():
+    """A map worker's setup: one FFT thread (the pool keeps the cores busy), freed memory
+    kept for reuse (`relax.keep_freed_memory`)."""
     from gw.explicit import halfspace
+    from gw.explicit.relax import keep_freed_memory
 
     halfspace.FFT_WORKERS = 1
+    keep_freed_memory()
 
 
-def run(out, *, full=False, jobs=None, scheduler=None, step=print, header="", command="",
-        ship=False):
+def run(out, *, full=False, jobs=None, scheduler=None, step=print, header="", command=""):
     """Write out/rough_explicit/{report.md, rough_explicit.json, curves.png, and with `full`
-    map.png and rough_map.json, the compact map (`gw.explicit.measured_map`), also into the
-    package with `ship`}; return the summary. `command`: what produced it, for the map."""
-    from gw.explicit.measured_map import MAP_FILE, map_record, save_map
+    map.png and rough_map.json, the compact map (`gw.explicit.measured_map`)}; return the
+    summary. `command`: what produced it, for the map."""
+    from gw.explicit.measured_map import map_record, save_map
 
     folder = out / "rough_explicit"
     start = time.perf_counter()
@@ -206,11 +209,10 @@ def run(out, *, full=False, jobs=None, scheduler=None, step=print, header="", co
         save_figure(map_figure(records), folder / "map.png")
         compact = map_record(records, {
             "command": command, "commit": git_commit(Path(__file__).parent) or "unknown",
-            "solver_revision": solver_revision(), "accuracy": ACCURACY,
+            "solver_revision": solver_revision(), "explicit_revision": _folder().name,
+            "accuracy": ACCURACY,
             "date": datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")})
         save_map(folder / "rough_map.json", compact)
-        if ship:
-            save_map(MAP_FILE, compact)
     write_atomic(folder / "rough_explicit.json",
                  json.dumps(summary, indent=1, allow_nan=False))
     write_atomic(folder / "report.md", "\n".join([header, "", section(summary)]) + "\n")
@@ -264,9 +266,11 @@ def section(summary):
     neither = sum(not any(r["holds"][k] for k in ("gw_sum", "gw_cells", "interacting"))
                   for r in rows)
     shared = [r["errors"]["gw_sum"] - r["errors"]["gw_cells"] for r in rows]
-    stopped = [r for r in rows if r["models"]["interacting"]["stopped"] is not None]
+    stopped = [r for r in rows if r["models"]["interacting"]["stopped"] is not None
+               and r["models"]["interacting"]["approach"]]
     short = [r for r in stopped if not settled(r["models"]["interacting"]["stopped"],
                                                r["models"]["interacting"]["approach"])]
+    unanswered = [r for r in rows if not r["models"]["interacting"]["approach"]]
     summits = MAP_SUMMITS if summary["full"] else QUICK[0]["summits"]
     sampling = [r["models"]["gw_solved"]["f_max"] / r["models"]["gw_sum"]["f_max"] - 1.0
                 for r in rows]
@@ -289,13 +293,16 @@ def section(summary):
                  + (f"on {len(short)} of them (μ = "
                     + ", ".join(f"{mu:g}" for mu in sorted({r["scene"]["mu"] for r in short}))
                     + ") still in tension ('stopped in tension' in the table: its F̄max is that "
-                    "of the path above, no answer; 'at its first separation': none at all)"
-                    if short else "")
+                    "of the path above, no answer)" if short else "")
                  + ("; " if short and len(short) < len(stopped) else "")
                  + ("on the others once the total force had turned compressive, its F̄max "
                     "behind it ('stopped in compression', the rule the whole surface's own "
                     "approach ends by)" if len(short) < len(stopped) else "")
                  + ". " if stopped else "")
+              + (f"On {len(unanswered)}/{len(rows)} (μ = "
+                 + ", ".join(f"{mu:g}" for mu in sorted({r["scene"]["mu"] for r in unanswered}))
+                 + ") it found none at its first separation: no answer ('—'). "
+                 if unanswered else "")
               + "GW's "
               "integral (scaled to the summits on the map: it counts every cap drawn) differs "
               "from the sum over the same summits by the sample and by the caps under others, "
@@ -341,17 +348,18 @@ def _span(values, form):
 
 def _stop(stopped, force):
     """How a model's path ended: '' (it did not stop), 'in tension' (its F̄max no answer) or
-    'in compression' (its F̄max behind it: `gw.explicit.compare.settled`)."""
+    'in compression' (its F̄max behind it: `gw.explicit.compare.settled`); a model with no
+    path at all has no error and its cell is '—' (`_cell`)."""
     if not stopped:
         return ""
-    if not len(force):
-        return "at its first separation"
     return "in compression" if settled(True, force) else "in tension"
 
 
 def _cell(error, holds, stop=""):
     """A model's error in the report: ✗ where it does not hold, how its path stopped
-    (`_stop`) where it found no equilibrium part-way."""
+    (`_stop`) where it found no equilibrium part-way; '—' where it has no path at all."""
+    if error is None:
+        return "— ✗"
     return f"{error:+.1%}{f' stopped {stop}' if stop else ''}{'' if holds else ' ✗'}"
 
 
@@ -419,7 +427,8 @@ def curves_figure(record):
     for name, label in NAMES.items():
         m = record["models"][name]
         d = np.asarray(m["d"])
-        line, = ax.plot(d, m["approach"], label=f"{label}: F̄max {m['f_max']:.3f}")
+        found = "no equilibrium" if m["f_max"] is None else f"F̄max {m['f_max']:.3f}"
+        line, = ax.plot(d, m["approach"], label=f"{label}: {found}")
         if m["retraction"] is not None and name in ("interacting", "whole"):
             ax.plot(d, np.array(m["retraction"], dtype=float), ls="--", color=line.get_color(),
                     lw=0.8)
@@ -469,8 +478,9 @@ def map_figure(records):
                 ax.plot(x, answered, "s--" if first else "s", color=color,
                         mfc=None if first else "none",
                         label=f"interacting, ζ = {zeta:g}" if first else None)
-                ax.plot(x, [np.nan if _answered(r) else 100 * r["errors"]["interacting"]
-                            for r in rows], "x", color=color)
+                ax.plot(x, [np.nan if _answered(r) or r["errors"]["interacting"] is None
+                            else 100 * r["errors"]["interacting"] for r in rows], "x",
+                        color=color)  # no path at all: not drawn
         ax.axhspan(-10, 10, color="0.9")
         ax.set_xscale("log")
         ax.set_xticks(MAP_SRE, [f"{v:g}" for v in MAP_SRE])

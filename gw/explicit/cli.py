@@ -10,6 +10,7 @@ from fem_asperity.plumbing.cli import ProgressBar, dump_json, print_table
 from fem_asperity.plumbing.files import output_folder, save_figure, staged_folder, write_atomic
 
 from .answer import MODELS, answer
+from .relax import keep_freed_memory
 from .topography import read_topography
 from .whole import STEPS, Adhesion
 
@@ -66,6 +67,7 @@ def main(args, parser):
     if args.out is not None:
         output_folder(args.out, "--out", OWNER)  # refused before any solving
     bar = ProgressBar("whole surface", time_left=True) if args.model == "whole" else None
+    keep_freed_memory()  # this process is ours: the solve's fields are reused, not refaulted
     found = answer(topography, adhesion, model=args.model, accuracy=args.accuracy,
                    radius=args.R, progress=bar)
     if bar is not None:

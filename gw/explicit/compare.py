@@ -104,13 +104,13 @@ class ModelCurve:
     retraction None where the model has none), `f_max` (F̄max > 0, on approach), `d_at_max`
     (d̃), `f_off` (the most tensile F̄ on retraction, > 0), `jumps` (in, out), `seconds`, and
     `stopped` (d̄, ε: where the interacting model found no equilibrium and its path ends;
-    None where it did not; where that is its first separation, its paths are empty, F̄max 0
-    and d_at_max there: no answer of its own)."""
+    None where it did not; where that is its first separation, its paths are empty and
+    F̄max and its d̃ None: no answer at all)."""
 
     d: np.ndarray
     approach: np.ndarray
     retraction: np.ndarray | None
-    f_max: float
+    f_max: float | None
     d_at_max: float
     f_off: float | None
     jumps: tuple
@@ -121,8 +121,9 @@ class ModelCurve:
 @dataclass(frozen=True)
 class Comparison:
     """Every model on one `scene`: `models` (name → ModelCurve), the whole surface's
-    `estimate` of F̄max, `errors` (name → F̄max/F̄max(whole) − 1) and `holds` (name → within
-    HOLDS, counting the estimate, on a path that is `settled`)."""
+    `estimate` of F̄max, `errors` (name → F̄max/F̄max(whole) − 1; None for a model with no
+    path: no equilibrium at its first separation) and `holds` (name → within HOLDS, counting
+    the estimate, on a path that is `settled`)."""
 
     scene: Scene
     models: dict
@@ -176,7 +177,8 @@ def compare(scene, *, accuracy="default", law=None, progress=None):
                                   (0, 0), time.perf_counter() - started)
     reference = models["whole"].f_max
     estimate = whole.error_estimate["force_max"] / per_summit
-    errors = {name: models[name].f_max / reference - 1.0 for name in MODELS}
+    errors = {name: None if models[name].f_max is None else models[name].f_max / reference - 1.0
+              for name in MODELS}
     holds = {name: within(models[name].f_max, reference, estimate,
                           settled(models[name].stopped, models[name].approach))
              for name in MODELS}
@@ -232,8 +234,8 @@ def _summit_curve(paths, tails, sigma, count, tails_seconds=0.0):
 
     jumps = (sum(j[0] == "in" for j in up.jumps + down.jumps),
              sum(j[0] == "out" for j in up.jumps + down.jumps))
-    if up.d.size == 0:  # no equilibrium at the first separation: no F̄max of its own
-        return ModelCurve(up.d, up.force, None, 0.0, up.stopped / sigma, None, jumps,
+    if up.d.size == 0:  # no equilibrium at the first separation: no answer at all
+        return ModelCurve(up.d, up.force, None, None, None, None, jumps,
                           seconds + tails_seconds, up.stopped)
     return _curve(up.d / sigma, force(up) / count, _padded(force(down)[::-1], up.d.size) / count,
                   jumps, seconds + tails_seconds, up.stopped)
@@ -245,8 +247,6 @@ def _padded(values, size):
 
 
 def _curve(d, approach, retraction, jumps, seconds, stopped=None):
-    if d.size == 0:
-        raise InputError("the interacting model found no equilibrium at the first separation")
     f_max, d_max, _ = most_tensile(d, approach)
     f_off = None if np.isnan(retraction).all() else float(-np.nanmin(retraction))
     return ModelCurve(d, approach, retraction, f_max, d_max, f_off, jumps, seconds, stopped)

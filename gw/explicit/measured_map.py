@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
+from fem_asperity.plumbing.errors import InputError
 from fem_asperity.plumbing.files import write_atomic
 
 MAP_FILE = Path(__file__).parents[1] / "data" / "rough_map.json"
@@ -28,10 +29,11 @@ ON_GRID = 1e-6
 @dataclass(frozen=True)
 class MeasuredError:
     """A model's F̄max error read off the map around a point: `size` (the largest |error| over
-    the `surfaces` solved at the grid points that bracket it), `uncertainty` (the largest of
-    their whole surfaces' relative estimates), `around` (each axis's bracketing values)."""
+    the `surfaces` solved at the grid points that bracket it; None where the model has no
+    answer on one of them), `uncertainty` (the largest of their whole surfaces' relative
+    estimates), `around` (each axis's bracketing values)."""
 
-    size: float
+    size: float | None
     uncertainty: float
     surfaces: int
     around: dict
@@ -70,12 +72,13 @@ def _bracket(values, x):
     """The grid values around `x` (itself if within ON_GRID of one, else the neighbours below
     and above), None outside [min, max]."""
     values = np.asarray(values, dtype=float)
-    if not values[0] * (1 - ON_GRID) <= x <= values[-1] * (1 + ON_GRID):
+    logs, target = np.log(values), np.log(x)
+    if not logs[0] - ON_GRID <= target <= logs[-1] + ON_GRID:
         return None
-    on = np.isclose(np.log(values), np.log(x), rtol=0.0, atol=ON_GRID)
+    on = np.abs(logs - target) <= ON_GRID
     if on.any():
         return [float(values[on][0])]
-    k = int(np.searchsorted(values, x))
+    k = int(np.searchsorted(logs, target))  # strictly inside: 1 <= k <= len - 1
     return [float(values[k - 1]), float(values[k])]
 
 
@@ -84,18 +87,19 @@ def measured_error(model, *, mu, zeta, sigma_r_eta, record=None):
     the map (`record`, by default the shipped one): the largest over the grid points that
     bracket it on every axis (up to eight, each with its draws), a first-order reading (the
     error between grid points is taken as no larger than at them). None outside the map's
-    box, or where a surface there has no answer of the model's."""
+    box (or with no map); InputError for a model the map does not hold."""
     record = shipped_map() if record is None else record
     if record is None:
         return None
+    names = set(record["surfaces"][0]["errors"])
+    if model not in names:
+        raise InputError(f"model must be one of {', '.join(sorted(names))}; got {model!r}")
     point = {"mu": mu, "zeta": zeta, "sigma_r_eta": sigma_r_eta}
     around = {k: _bracket(record["axes"][k], point[k]) for k in AXES}
     if any(v is None for v in around.values()):
         return None
     near = [s for s in record["surfaces"]
             if all(any(np.isclose(s[k], v, rtol=1e-9) for v in around[k]) for k in AXES)]
-    errors = [s["errors"].get(model) for s in near]
-    if not near or any(e is None for e in errors):
-        return None
-    return MeasuredError(float(max(abs(e) for e in errors)),
-                         float(max(s["estimate"] for s in near)), len(near), around)
+    errors = [s["errors"][model] for s in near]
+    size = None if any(e is None for e in errors) else float(max(abs(e) for e in errors))
+    return MeasuredError(size, float(max(s["estimate"] for s in near)), len(near), around)

@@ -58,9 +58,10 @@ DISC_REACH = 30.0
 @dataclass(frozen=True, eq=False)
 class SharedTails:
     """T(d) of summits on a map (`build`): `q` (bin means, ε) and `weight` (pixels per bin
-    times a²/(2π): + the map's, − the paraboloids'), the paraboloids' tails beyond the window
-    as `q_beyond` and `w_beyond` (rays: R(θ)²/2 − z_i, and −1/ANGLES each), and the
-    `separations` (d_lo, d_hi, ε) the bins were laid out for."""
+    times a²/(2π): + the map's, − the paraboloids'), the paraboloids' parts beyond their
+    pixels as `q_beyond` and `w_beyond` (binned like q: a disc's remainder ρ²/2 − z_i with
+    weight −1, or a ray's R(θ)²/2 − z_i with −1/ANGLES; φ̄ at each), and the `separations`
+    (d_lo, d_hi, ε) the bins were laid out for."""
 
     q: np.ndarray
     weight: np.ndarray

@@ -31,7 +31,7 @@ from fem_asperity.plumbing.errors import InputError
 
 from .halfspace import PixelHalfSpace
 from .path import follow
-from .relax import BLAS_THREADS, LJMap, keep_freed_memory
+from .relax import BLAS_THREADS, LJMap
 
 #: Largest compliance number c = Δγ a/(π E* ε²) without a warning: the pixel a against the
 #: cohesive zone's elastic length E*ε²/Δγ (for caps c = μ^1.5 a/π, a in √(Rε)). One cap against
@@ -216,6 +216,8 @@ def solve_whole(topography, adhesion, *, accuracy="default", depth=None, jump_re
     lowest d, if given); the retraction returns over the same separations. `jump_resolution`
     (m): bisect each jump's d to it. `estimate`: solve again with twice the pixel (2 × 2
     blocks averaged) for the error estimate. `progress(fraction)` is called as the solve goes.
+    On glibc, `relax.keep_freed_memory()` called once beforehand (the package's commands do)
+    makes large maps faster: their fields are reused instead of faulted in afresh.
     """
     if accuracy not in STEPS:
         raise InputError(f"accuracy must be one of {', '.join(STEPS)}; got {accuracy!r}")
@@ -256,7 +258,6 @@ def _solve(heights, pixel, periodic, adhesion, top, step, lowest, resolution_eps
     Without `separations`, the approach runs from `top` down by `step` until the force turns
     compressive past its most tensile value (or to `lowest`, ε)."""
     started = time.perf_counter()
-    keep_freed_memory()
     space = PixelHalfSpace.build(heights.shape, compliance=adhesion.compliance(pixel),
                                  periodic=periodic)
     ljmap = LJMap(heights, space)
