@@ -36,3 +36,10 @@ def test_the_committed_reports_come_from_the_current_solver():
         assert found and found.group(1) == solver_revision(), (
             f"docs/{name} was written by another solver revision: regenerate it "
             "(README, 'The report and figures under docs/')")
+
+
+def test_every_benchmark_script_is_listed_in_the_benchmarks_readme():
+    folder = ROOT / "benchmarks"
+    listed = (folder / "README.md").read_text()
+    scripts = [p.name for p in folder.glob("*.py") if p.name != "provenance.py"]
+    assert scripts and all(f"| `{name}` |" in listed for name in scripts), scripts
