@@ -308,13 +308,14 @@ def _interaction(mu, zeta, sigma_r_eta):
     map."""
     from gw.explicit.measured_map import AXES, measured_error, shipped_map
 
-    found = measured_error("gw_cells", mu=mu, zeta=zeta, sigma_r_eta=sigma_r_eta)
+    shipped = shipped_map()
+    found = measured_error("gw_cells", mu=mu, zeta=zeta, sigma_r_eta=sigma_r_eta,
+                           record=shipped)
     if found is not None and found.size is None:
         return Effect(INTERACTION, None, None, "not measured for this scene",
                       "a surface of the measured map around the scene has no answer of GW's "
                       "sum (docs/rough_explicit.md)")
     if found is None:
-        shipped = shipped_map()
         box = "no map is shipped" if shipped is None else "outside the measured map's " + (
             ", ".join(f"{k} {min(v):g}-{max(v):g}" for k, v in shipped["axes"].items()))
         return Effect(INTERACTION, None, None, "not measured for this scene",

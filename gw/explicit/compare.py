@@ -111,7 +111,7 @@ class ModelCurve:
     approach: np.ndarray
     retraction: np.ndarray | None
     f_max: float | None
-    d_at_max: float
+    d_at_max: float | None
     f_off: float | None
     jumps: tuple
     seconds: float

@@ -98,8 +98,7 @@ def measured_error(model, *, mu, zeta, sigma_r_eta, record=None):
     around = {k: _bracket(record["axes"][k], point[k]) for k in AXES}
     if any(v is None for v in around.values()):
         return None
-    near = [s for s in record["surfaces"]
-            if all(any(np.isclose(s[k], v, rtol=1e-9) for v in around[k]) for k in AXES)]
+    near = [s for s in record["surfaces"] if all(s[k] in around[k] for k in AXES)]
     errors = [s["errors"][model] for s in near]
     size = None if any(e is None for e in errors) else float(max(abs(e) for e in errors))
     return MeasuredError(size, float(max(s["estimate"] for s in near)), len(near), around)
