@@ -5,9 +5,10 @@ import pytest
 from scipy.linalg import LinAlgError
 
 from fem_asperity.closed_forms.lj import scaled_traction_slope
-from fem_asperity.path import continuation
-from fem_asperity.path.continuation import EdgeBlockCholesky, Linearisation, edge_block
+from fem_asperity.path import newton
+from fem_asperity.path.continuation import Linearisation
 from fem_asperity.path.elimination import relax_edge
+from fem_asperity.path.newton import EdgeBlockCholesky, edge_block
 from fem_asperity.path.surface import LJSurface
 from fem_asperity.solver.presets import discretisation
 from fem_asperity.solver.solve import solve_discretised
@@ -264,13 +265,13 @@ def _count_double_factorisations(monkeypatch):
     """A list that gains, at each `Linearisation` factorisation attempt, whether it was in
     double precision."""
     doubles = []
-    cholesky_or_none = continuation._cholesky_or_none
+    cholesky_or_none = newton.cholesky_or_none
 
-    def counted(jac, block):
+    def counted(jac, block=None):
         doubles.append(jac.dtype == np.float64)
         return cholesky_or_none(jac, block)
 
-    monkeypatch.setattr(continuation, "_cholesky_or_none", counted)
+    monkeypatch.setattr(newton, "cholesky_or_none", counted)
     return doubles
 
 
@@ -283,7 +284,7 @@ def test_the_stability_of_a_badly_scaled_tangent_is_judged_on_its_scaled_form(mo
     scale = np.logspace(0.0, 3.0, 80)
     jac = _rotated(np.logspace(-3, 0, 80), seed=4) * np.outer(scale, scale)
     norm = np.max(np.abs(jac).sum(axis=1))
-    assert np.linalg.eigvalsh(jac)[0] < continuation.SURE_SIGN * norm  # the premise
+    assert np.linalg.eigvalsh(jac)[0] < newton.SURE_SIGN * norm  # the premise
     linear = Linearisation(_SpringlessSurface(jac), np.zeros(80), 0.0, np.array([0.0, 1.0, 0.0]))
     assert linear.stable is True
     assert not any(doubles)

@@ -4,9 +4,10 @@ import numpy as np
 import pytest
 
 from fem_asperity.path.continuation import Trace, correct
+from fem_asperity.path.held_tip import _bordered, _constraint, held
 from fem_asperity.path.landing import land
 from fem_asperity.path.surface import LJSurface
-from fem_asperity.path.tip import _Bordered, _constraint, _insert_roots, held
+from fem_asperity.path.tip import _insert_roots
 from fem_asperity.solids.bem import BoussinesqSurface, radial_grid
 from fem_asperity.solver.presets import discretisation
 from fem_asperity.solver.solve import solve_curve, solve_discretised
@@ -69,15 +70,15 @@ def test_an_indefinite_prediction_is_solved_through_the_pins_penalty(adhered):
     slope = surface.sensitivities(predicted, state.delta)[2]
     assert np.min(np.linalg.eigvalsh(surface.tangent_matrix(slope, np.float64))) < 0.0
     pin, c, _ = _constraint(surface, predicted, state.delta, tip)
-    matrix = _Bordered(surface, predicted, state.delta, pin)
-    assert matrix._penalty > 0.0 and matrix._lu is None
+    system, g_delta, _ = _bordered(surface, predicted, state.delta, pin)
+    assert system._penalty > 0.0 and system._lu is None
     n = pin.size
     dense = np.zeros((n + 1, n + 1))
     dense[:n, :n] = surface.tangent_matrix(slope, np.float64)
-    dense[:n, n], dense[n, :n], dense[n, n] = matrix.g_delta, -pin, 1.0
+    dense[:n, n], dense[n, :n], dense[n, n] = g_delta, -pin, 1.0
     rhs = -np.append(surface.residual(predicted, state.delta), c)
     expected = np.linalg.solve(dense, rhs)
-    dw, dd = matrix.solve(rhs[:-1], rhs[-1])
+    dw, dd = system.solve(rhs)
     assert np.max(np.abs(np.append(dw, dd) - expected)) <= 1e-9 * np.max(np.abs(expected))
 
 
@@ -131,7 +132,7 @@ def test_the_approach_followed_in_the_tip_gives_the_arc_length_paths_curve(monke
     points within 1e-6 (measured 6.8e-8; the arc length's own spline through every other point
     misses the rest by 2.5e-7, and a state of another branch would be a P̄ step, 0.05, away);
     every event has an estimate (the path's first point is the landing itself,
-    `tip._as_held`) and lies within the other curve's."""
+    `held_tip.as_held`) and lies within the other curve's."""
     from scipy.interpolate import CubicSpline
 
     from fem_asperity.path import branches, tip

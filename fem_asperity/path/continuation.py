@@ -9,56 +9,15 @@ other part; including P̄ keeps the steps honest where x̄o and δ̄o hardly mov
 neck shrinks (large μ, before jump-out).
 """
 
-from copy import copy
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.linalg import (
-    LinAlgError,
-    cho_factor,
-    cho_solve,
-    cholesky,
-    lu_factor,
-    lu_solve,
-    solve_triangular,
-)
 
 from ..plumbing.errors import ContinuationError
 from .elimination import relax_edge
+from .newton import BorderedSystem, edge_block
 from .surface import gap_keeping_step
 
-#: A Newton iteration reuses the last linearisation (of this point or the one before) with its
-#: edge block refactorised at the new iterate (`Linearisation.moved_to`), refining each solve
-#: against the current matrix up to MOVED_REFINEMENTS times; if the last correction is still
-#: > ACCEPT of the step it factorises afresh; test_surface_solver.py::
-#: test_moved_linearisation_solves_like_a_fresh_one.
-MOVED_REFINEMENTS, ACCEPT = 3, 1e-2
-#: The edge block: this share of the surface nodes, a contiguous run centred on the crack tip
-#: (the centre before contact). Only there do the springs change much between neighbouring
-#: points (FE `draft`, μ = 5: with the 187 nodes within 0.5 √(Rε) of the tip refreshed, the
-#: rest kept from 8 points back, the refinement contracts by 0.1-0.2 per sweep; kept whole, the
-#: matrix's eigenvalues move by up to 150). A moved linearisation whose tip left the middle half
-#: of its block factorises afresh. Not pinned by a test.
-EDGE_SHARE = 0.125
-#: Where a single-precision Cholesky factorisation of ∂g/∂w succeeds, the sign of its softest
-#: eigenvalue is judged on the Jacobi-scaled tangent A = D ∂g/∂w D (D = diag(∂g/∂w)^(−1/2), unit
-#: diagonal; by Sylvester's law of inertia it is positive definite where ∂g/∂w is). Single
-#: precision cannot tell the sign of an eigenvalue of A below ~1e-7 ‖A‖ (rounding moves each
-#: entry by 6e-8 of itself and the factorisation's backward error is bounded entrywise by
-#: multiples of 6e-8 √(J_ii J_jj), Higham's Thm 10.5, so both are that small on A's scale).
-#: So the softest eigenvalue of A is estimated by the Rayleigh quotient q (exact product, in
-#: double precision) after SOFTEST_ITERATIONS inverse iterations with the factorisation.
-#: q ≤ −ROUNDING ‖A‖∞ (double precision's rounding of q): unstable, for the softest eigenvalue
-#: is at most q. q ≥ SURE_SIGN ‖A‖∞, ten times single precision's rounding: stable (a negative
-#: eigenvalue of A is one within ~1e-7 of zero of the factorised matrix, whose mode each
-#: iteration amplifies at least fivefold over every mode above SURE_SIGN, so q would be a few
-#: 1e-7 at most). Between, a double-precision factorisation decides (q's error grows as a second
-#: soft mode nears the first). The scaling matters for the FE, whose surface stiffness grows
-#: with r: at `default`, μ = 5, q/‖∂g/∂w‖∞ unscaled was below SURE_SIGN at 121 of 227 flag
-#: reads, q/‖A‖∞ at 2. test_surface_solver.py::
-#: test_stability_below_single_precision_is_decided_in_double and
-#: test_the_stability_of_a_badly_scaled_tangent_is_judged_on_its_scaled_form.
-SOFTEST_ITERATIONS, SURE_SIGN, ROUNDING = 3, 6e-7, 1e-14
 #: Newton's line search: a step is accepted once the merit (relative residual + constraint)
 #: falls by ARMIJO × its fraction (the usual sufficient decrease), else halved, at most
 #: MAX_HALVINGS times (2^-20 of a step is below any useful move). Not pinned by a test.
@@ -66,9 +25,6 @@ ARMIJO, MAX_HALVINGS = 1e-4, 20
 #: An iteration that keeps more than SLOW_PROGRESS of the merit counts as slow (`patience`).
 #: Not pinned by a test.
 SLOW_PROGRESS = 0.9
-#: The border of a Cholesky-eliminated bordered matrix is degenerate (LU instead) below this
-#: relative size: double-precision cancellation of its terms. Not pinned by a test.
-DEGENERATE_BORDER = 1e-12
 #: Step-length control of `follow`, in the manner of scipy's solve_ivp: the first step FIRST_STEP;
 #: after an accepted point the step is scaled by SAFETY/ratio (ratio: the largest of the
 #: changes of P̄, ā_c and the turn relative to their limits, at least MIN_RATIO), at most
@@ -172,226 +128,38 @@ def _observables(surface, w, delta):
     return np.array([surface.centre_gap(w, delta), delta, surface.force(w, delta)])
 
 
-def cholesky_in_place(matrix):
-    """Cholesky factor (for `cho_solve`) of the symmetric `matrix`, overwriting it; raises
-    LinAlgError if it is not positive definite. Its transpose is Fortran-ordered, so LAPACK
-    needs no copy."""
-    return cho_factor(matrix.T, check_finite=False, overwrite_a=True)
+def _observable_gradients(surface, g_delta, p_delta):
+    """∂(x̄o, δ̄o, P̄)/∂(w, δ̄o) at a state, (3, n + 1)."""
+    n = g_delta.size
+    gradients = np.zeros((3, n + 1))
+    gradients[0, 0], gradients[0, n] = -1.0, 1.0  # x = δ − w0
+    gradients[1, n] = 1.0
+    gradients[2, :n], gradients[2, n] = -g_delta / surface.load_factor, p_delta
+    return gradients
 
 
-def edge_block(surface, w, delta):
-    """(first, last + 1): the run of EDGE_SHARE of the nodes centred on the crack tip."""
-    n = surface.r_nodes.size
-    count = max(1, int(EDGE_SHARE * n))
-    centre = int(np.searchsorted(surface.r_nodes, surface.crack_tip(w, delta)))
-    first = min(max(centre - count // 2, 0), n - count)
-    return first, first + count
-
-
-class EdgeBlockCholesky:
-    """Cholesky factorisation of a symmetric positive definite matrix J (in J's precision) with
-    its nodes ordered bulk first, edge block (`edge_block`) last:
-
-        J = [[L Lᵀ, L M], [Mᵀ Lᵀ, J_ee]],   J_ee − Mᵀ M = S (the edge's Schur complement),
-
-    so that a new edge block J_ee' costs only the Cholesky factorisation of J_ee' − Mᵀ M
-    (`with_edge`), the bulk kept. Raises LinAlgError where J is not positive definite."""
-
-    def __init__(self, jac, block):
-        first, last = block
-        self.block = block
-        self._bulk = np.r_[0:first, last:jac.shape[0]]
-        bulk, edge = self._bulk, slice(first, last)
-        self._l = cholesky(_without_block(jac, first, last), lower=True, overwrite_a=True,
-                           check_finite=False)
-        self._m = solve_triangular(self._l, jac[bulk, edge], lower=True, check_finite=False)
-        self._coupled = self._m.T @ self._m
-        self._schur = cho_factor(jac[edge, edge] - self._coupled, check_finite=False)
-        self.single = jac.dtype == np.float32
-
-    def with_edge(self, jac_edge):
-        """This factorisation with the edge block replaced by `jac_edge`."""
-        moved = copy(self)
-        moved._schur = cho_factor(jac_edge - self._coupled, check_finite=False)
-        return moved
-
-    def solve(self, rhs):
-        """J⁻¹ rhs in the factorisation's precision."""
-        first, last = self.block
-        rhs = rhs.astype(self._l.dtype)
-        y = solve_triangular(self._l, rhs[self._bulk], lower=True, check_finite=False)
-        z = cho_solve(self._schur, rhs[first:last] - self._m.T @ y, check_finite=False)
-        x = np.empty(rhs.size)
-        x[first:last] = z
-        x[self._bulk] = solve_triangular(self._l, y - self._m @ z, lower=True, trans="T",
-                                         check_finite=False)
-        return x
-
-
-def _without_block(jac, first, last):
-    """The symmetric `jac` without the rows and columns first:last, Fortran-ordered (for LAPACK
-    without a copy), by four slice copies (a gather by index arrays took twice as long)."""
-    size = jac.shape[0] - (last - first)
-    bulk = np.empty((size, size), dtype=jac.dtype, order="F")
-    bulk[:first, :first], bulk[:first, first:] = jac[:first, :first], jac[:first, last:]
-    bulk[first:, :first], bulk[first:, first:] = jac[last:, :first], jac[last:, last:]
-    return bulk
-
-
-def _cholesky_or_none(jac, block):
-    """`EdgeBlockCholesky` of `jac`, or None where it is not positive definite."""
-    try:
-        return EdgeBlockCholesky(jac, block)
-    except LinAlgError:
-        return None
-
-
-class Linearisation:
-    """The bordered Newton matrix [[∂g/∂w, ∂g/∂δ], [row · ∂o/∂(w, δ)]] at (w, δ), factorised.
-
-    Where ∂g/∂w is positive definite (a stable state) it is solved by Cholesky
-    (`EdgeBlockCholesky`) and block elimination of the border (cheaper than LU); otherwise, or
-    if the border is degenerate, by LU of the whole matrix. The factorisation is in single
-    precision (faster than double), in double where single fails. `stable` says whether ∂g/∂w
-    is positive definite: single precision cannot tell the sign of an eigenvalue below about
-    1e-7 of the largest of the Jacobi-scaled ∂g/∂w (rounding to single precision moves its
-    eigenvalues that far, and at μ = 50, BEM `draft`, the crack tip's softest mode is 1e-9 of
-    the stiffest), so where its Cholesky factorisation succeeded a clearly positive softest
-    eigenvalue is found by inverse iteration against the exact product (`_softest`), or else a
-    double-precision factorisation decides (test_surface_solver.py). Each solve is refined once
-    against the double-precision bordered matrix, so a solution carries about (κ·6e-8)²
-    relative error for the bordered system's condition number κ (a linearisation moved to a
-    nearby state, `moved_to`, is refined up to MOVED_REFINEMENTS times).
-    """
+class Linearisation(BorderedSystem):
+    """The arc length's Newton matrix [[∂g/∂w, ∂g/∂δ], [row · ∂o/∂(w, δ)]] at (w, δ), factorised
+    on the edge block about the crack tip (`newton.edge_block`), J in single precision, else in
+    double, else LU (`newton.BorderedSystem`); `stable` is the state's stability under δ̄o
+    control, whatever the row (docs/methods.md, "The bordered Newton system")."""
 
     def __init__(self, surface, w, delta, row):
         g_delta, p_delta, slope = surface.sensitivities(w, delta)
-        n = self.n = g_delta.size
-        border = self._set_products(surface, row, g_delta, p_delta, slope)
-        jac = surface.tangent_matrix(slope)
-        self.refinements, self.moved, self.converged = 1, False, True
-        block = edge_block(surface, w, delta)
-        self._cho = _cholesky_or_none(jac, block)
-        if self._cho is None:
-            self._cho = _cholesky_or_none(self._double(), block)
-        self._stable = False if self._cho is None else None if self._cho.single else True
-        if self._cho is not None and self._eliminate(border):
-            return
-        if self._cho is not None:  # a degenerate border: decide the flag before LU replaces it
-            self._stable = self.stable
-        matrix = np.empty((n + 1, n + 1), dtype=np.float32, order="F")  # LU in place
-        matrix[:n, :n], matrix[:n, n], matrix[n] = jac, g_delta, border
-        self._cho, self._lu = None, lu_factor(matrix, check_finite=False, overwrite_a=True)
-
-    def _eliminate(self, border):
-        """Set up the block elimination of the border; False if it is degenerate."""
-        n = self.n
-        self._border, self._b = border[:n], self._cho.solve(self._g_delta)
-        self._denominator = border[n] - self._border @ self._b
-        size = abs(border[n]) + abs(self._border) @ abs(self._b)
-        return abs(self._denominator) > DEGENERATE_BORDER * size
-
-    def _solve_factored(self, rhs):
-        if self._cho is None:
-            # A refinement on a nearly singular factorisation can grow past float32's range: the
-            # cast gives inf, which `correct` takes for the failed step it is (and retries
-            # shorter), so the overflow is not worth a warning on the user's terminal.
-            with np.errstate(over="ignore"):
-                single = rhs.astype(np.float32)
-            return lu_solve(self._lu, single, check_finite=False).astype(float)
-        a = self._cho.solve(rhs[:-1])
-        dd = (rhs[-1] - self._border @ a) / self._denominator
-        return np.append(a - dd * self._b, dd)
-
-    def _set_products(self, surface, row, g_delta, p_delta, slope):
-        """Hold the exact (double-precision) bordered product at one state; returns its border."""
-        n = g_delta.size
-        gradients = np.zeros((3, n + 1))
-        gradients[0, 0], gradients[0, n] = -1.0, 1.0  # x = δ − w0
-        gradients[1, n] = 1.0
-        gradients[2, :n], gradients[2, n] = -g_delta / surface.load_factor, p_delta
-        self.gradients, border = gradients, row @ gradients
-        self._g_delta, self._border_row = g_delta, border
-        self._jac_product = lambda x: surface.tangent_product(slope, x)
-        self._double = lambda: surface.tangent_matrix(slope, np.float64)
-        self._diagonal = lambda: surface.tangent_diagonal(slope)
-        self._scaled_norm = lambda scale: surface.scaled_tangent_norm(slope, scale)
-        return border
-
-    @property
-    def stable(self):
-        """Whether ∂g/∂w is positive definite (a stable state), decided on first use: by the
-        factorisation that succeeded if it is in double precision; else not where a diagonal
-        entry is ≤ 0; else by the Rayleigh quotient q of the Jacobi-scaled ∂g/∂w that inverse
-        iteration finds (`_softest`), if it is clearly negative (then so is the softest
-        eigenvalue) or clearly positive (≥ SURE_SIGN of the scaled matrix's ‖·‖∞,
-        `LJSurface.scaled_tangent_norm`); else by a double-precision factorisation."""
-        if self._stable is None:
-            diagonal = self._diagonal()
-            if np.min(diagonal) <= 0.0:
-                self._stable = False
-                return self._stable
-            scale = np.sqrt(diagonal)
-            quotient, norm = self._softest(scale), self._scaled_norm(scale)
-            if quotient >= SURE_SIGN * norm:
-                self._stable = True
-            elif quotient <= -ROUNDING * norm:
-                self._stable = False
-            else:
-                self._stable = _cholesky_or_none(self._double(), self._cho.block) is not None
-        return self._stable
-
-    def _softest(self, scale):
-        """The Rayleigh quotient of the exact ∂g/∂w scaled to D ∂g/∂w D, D = diag(1/`scale`),
-        after SOFTEST_ITERATIONS inverse iterations with the Cholesky factorisation, from a
-        fixed random vector: never below the scaled matrix's softest eigenvalue, near it where
-        the factorised matrix is near ∂g/∂w."""
-        v = np.random.default_rng(0).standard_normal(self.n)
-        for _ in range(SOFTEST_ITERATIONS):
-            v = scale * self._cho.solve(scale * v)
-            v /= np.linalg.norm(v)
-        return float((v / scale) @ self._jac_product(v / scale))
+        self.gradients = _observable_gradients(surface, g_delta, p_delta)
+        super().__init__(surface, slope, g_delta, row @ self.gradients,
+                         block=edge_block(surface, w, delta))
 
     def moved_to(self, surface, w, delta, row):
-        """This linearisation as the approximate inverse of the bordered matrix at a nearby state
-        (w, δ): a Cholesky one with its edge block refactorised there (the bulk kept), an LU one
-        as it is. Solves are refined against that state's exact matrix (up to MOVED_REFINEMENTS
-        times, until a correction is ≤ ACCEPT of the step; `converged` says whether the last
-        solve got there). None where the crack tip left the middle half of the edge block or
-        the refactorised edge is not positive definite: then factorise afresh."""
-        moved = copy(self)
+        """`BorderedSystem.relocated` to the state (w, δ) and its `row`: None where it must be
+        factorised afresh."""
         g_delta, p_delta, slope = surface.sensitivities(w, delta)
-        border = moved._set_products(surface, row, g_delta, p_delta, slope)
-        moved.refinements, moved.moved = MOVED_REFINEMENTS, True
-        if self._cho is None:
-            return moved
-        moved._stable = None
-        first, last = self._cho.block
-        quarter = (last - first) // 4
-        lowest = first + quarter if first > 0 else 0
-        highest = last - quarter if last < self.n else self.n
-        tip = int(np.searchsorted(surface.r_nodes, surface.crack_tip(w, delta)))
-        if not lowest <= tip <= highest:
-            return None
-        try:
-            moved._cho = self._cho.with_edge(surface.tangent_block(slope, first, last))
-        except LinAlgError:
-            return None
-        return moved if moved._eliminate(border) else None
-
-    def solve(self, rhs):
-        """Solution (dw, dδ) of the bordered system for the right-hand side (n + 1,)."""
-        step = self._solve_factored(rhs)
-        for _ in range(self.refinements):
-            dw, dd = step[:-1], step[-1]
-            product = np.append(self._jac_product(dw) + dd * self._g_delta,
-                                self._border_row @ step)
-            correction = self._solve_factored(rhs - product)
-            step += correction
-            self.converged = np.max(np.abs(correction)) <= ACCEPT * np.max(np.abs(step))
-            if self.converged:
-                break
-        return step[:-1], step[-1]
+        gradients = _observable_gradients(surface, g_delta, p_delta)
+        moved = self.relocated(surface, slope, g_delta, row @ gradients,
+                               surface.crack_tip(w, delta))
+        if moved is not None:
+            moved.gradients = gradients
+        return moved
 
     def tangent(self):
         """Unit tangent (dw/ds, dδ/ds, do/ds), |do/ds| = 1, with row · do/ds > 0."""

@@ -14,13 +14,13 @@ element. `peel` then moves the tip along the valley the descent follows, the min
 the tip held at a radius (`pinned`), in steps of many elements while E falls.
 """
 
-from functools import partial
 from typing import NamedTuple
 
 import numpy as np
-from scipy.linalg import LinAlgError, cho_solve
+from scipy.linalg import LinAlgError
 
-from .continuation import ARMIJO, cholesky_in_place
+from .continuation import ARMIJO
+from .newton import PINNED, BorderedSystem, Cholesky, converged
 from .surface import TIP_GAP, gap_keeping_step
 
 #: Levenberg shift of an indefinite tangent: raised SHIFT_RAISE times until Cholesky succeeds,
@@ -44,19 +44,6 @@ MAX_HALVINGS = 30
 #: iterations. A peel step that fails is halved, down to PEEL_SMALLEST × the grid spacing.
 #: Not pinned by a test.
 PEEL_TOL, PEEL_NEWTON, PEEL_SMALLEST = 1e-6, 10, 1.0 / 16.0
-#: The penalty ρ e eᵀ added to the tangent of a pinned state (e: the pin's interpolation
-#: weights) is PIN_PENALTY × the largest elastic diagonal entry at the pin: large enough, it
-#: makes the tangent positive definite where the pin removes its one unstable direction (too
-#: small, the Cholesky factorisation fails and the peel step is halved); it leaves the bordered
-#: system's solution unchanged. Not pinned by a test.
-PIN_PENALTY = 10.0
-
-
-def pin_penalty(surface, nodes):
-    """ρ of the penalty ρ e eᵀ on the pin's `nodes`: PIN_PENALTY × the largest elastic diagonal
-    entry there."""
-    return PIN_PENALTY * float(np.max(surface.stiffness[nodes, nodes]))
-
 
 def _shifted_factor(jac, weight, shift, floor, unshifted_first):
     """(Cholesky factor of jac + s·diag(weight), s) for s = 0 if `unshifted_first` and that
@@ -64,7 +51,7 @@ def _shifted_factor(jac, weight, shift, floor, unshifted_first):
     diagonal = np.arange(jac.shape[0])
     if unshifted_first:
         try:
-            return cholesky_in_place(jac.copy()), 0.0
+            return Cholesky(jac.copy()), 0.0
         except LinAlgError:
             pass
     shift = max(shift, floor)
@@ -72,7 +59,7 @@ def _shifted_factor(jac, weight, shift, floor, unshifted_first):
         matrix = jac.copy()
         matrix[diagonal, diagonal] += shift * weight
         try:
-            return cholesky_in_place(matrix), shift
+            return Cholesky(matrix), shift
         except LinAlgError:
             shift = max(SHIFT_RAISE * shift, floor)
 
@@ -92,18 +79,6 @@ def _negative_curvature(surface, slope, solve, step, g, iterations=CURVATURE_ITE
     if g @ v > 0.0:
         v = -v
     return CURVATURE_STEP * v / np.max(np.abs(surface.interp @ v))
-
-
-def _solve_single(factor, rhs):
-    """Solve with a single-precision Cholesky factor, the result in double precision."""
-    return cho_solve(factor, rhs.astype(np.float32), check_finite=False).astype(float)
-
-
-def converged(residual, step, w, scale, tol):
-    """Newton's test (as `continuation.correct`): the residual ≤ tol × `scale` and the last
-    increment ≤ √tol relative to w."""
-    return (np.max(np.abs(residual)) <= tol * scale
-            and np.max(np.abs(step)) <= np.sqrt(tol) * (1.0 + np.max(np.abs(w))))
 
 
 class Landing(NamedTuple):
@@ -144,8 +119,7 @@ def land(surface, w, delta, *, tol=1e-9, max_iterations=None, resolved=None):
         jac = surface.tangent_matrix(slope)
         factor, shift = _shifted_factor(jac, weight, start, SHIFT_FLOOR, unshifted_first)
 
-        solve = partial(_solve_single, factor)
-
+        solve = factor.solve
         step = solve(-g)
         step += solve(-g - surface.tangent_product(slope, step) - shift * weight * step)
         if shift > 0.0:
@@ -193,33 +167,26 @@ def pinned(surface, w, delta, tip, *, tol=PEEL_TOL, max_iterations=PEEL_NEWTON):
     """The minimum of E(w; δ) near `w` with the crack tip held at the radius `tip` (√(Rε)):
     the node gaps, interpolated linearly, equal TIP_GAP there (`SurfaceShape.crack_tip`).
 
-    The constraint eᵀw = c is linear in w. Newton on the bordered system [J e; eᵀ 0], solved
-    with the single-precision Cholesky factor of J + ρ e eᵀ (PIN_PENALTY): two solves per
-    iteration. Converged when the residual with the pin's load, g + λe, is ≤ tol relative and
-    the last increment ≤ √tol relative. Returns a `Pinned`; not converged where the penalised
-    tangent is not positive definite (the pin leaves an unstable direction) or after
-    `max_iterations`."""
+    The constraint eᵀw = c is linear in w. Newton on the bordered system [J e; eᵀ 0], the pin's
+    load λ its unknown, solved with the single-precision Cholesky factor of J + ρ e eᵀ
+    (`newton.PINNED`): two solves per iteration. Converged when the residual with the pin's
+    load, g + λe, is ≤ tol relative and the last increment ≤ √tol relative. Returns a
+    `Pinned`; not converged where the penalised tangent is not positive definite (the pin
+    leaves an unstable direction) or after `max_iterations`."""
     nodes, weights = pin_nodes(surface, tip)
     held_value = weights @ (delta + surface.node_profile[nodes]) - TIP_GAP  # of eᵀw
     pin = np.zeros_like(w)
     pin[nodes] = weights
-    penalty = pin_penalty(surface, nodes)
-    coupling = (penalty * np.outer(weights, weights)).astype(np.float32)
+    border = np.append(pin, 0.0)
     scale = 1.0 + np.max(np.abs(surface.stiffness @ w))
     w = w.copy()
     for iteration in range(1, max_iterations + 1):
         g = surface.residual(w, delta)
-        jac = surface.tangent_matrix(surface.sensitivities(w, delta)[2])
-        jac[np.ix_(nodes, nodes)] += coupling
-        try:
-            solve = partial(_solve_single, cholesky_in_place(jac))
-        except LinAlgError:
+        system = BorderedSystem(surface, surface.sensitivities(w, delta)[2], pin, border,
+                                factorisations=(PINNED,), lu=False, refinements=0)
+        if system.failed:
             return Pinned(w, iteration, False, np.nan)
-        free, along = solve(-g), solve(pin)
-        off = held_value - pin @ w
-        shifted = (pin @ free - off) / (pin @ along)  # λ − ρ·off
-        step = free - shifted * along
-        multiplier = shifted + penalty * off
+        step, multiplier = system.solve(np.append(-g, held_value - pin @ w))
         if converged(g + multiplier * pin, step, w, scale, tol):
             return Pinned(w + step, iteration, True, multiplier)
         w = w + gap_keeping_step(delta + surface.node_profile - w, -step) * step
