@@ -11,7 +11,7 @@ import fem_asperity.solver.solve as solve
 from fem_asperity.path.continuation import _POINT_FIELDS, Trace
 from fem_asperity.path.curve import ESTIMATED
 from fem_asperity.path.near_events import events_near
-from fem_asperity.path.whole_curve import refine_force_extrema
+from fem_asperity.path.reading import refine_force_extrema
 from fem_asperity.solids.fe import Solid
 from fem_asperity.solver.presets import MU_TRACKING
 from fem_asperity.solver.solve import _discretisation, _solve_refining
@@ -52,7 +52,7 @@ def test_events_near_each_event_are_the_whole_finer_solves(mu, method, accuracy)
     about 5e-5 of themselves (measured at commit 330ba0b). On grids that follow the edge the
     jump-in's landing lies on a grid placed differently, so its events agree within the
     difference only. At μ = 7 the jump-out differed by 9e-6 until the fold search also tried
-    the interval before the last point flagged stable (`whole_curve.ADJACENT`): now 3e-9.
+    the interval before the last point flagged stable (`reading.ADJACENT`): now 3e-9.
     There the other events lie on grids placed differently too (the whole solve's ahead of the
     edges as they moved, a window's centred on its state), so they agree to within a tenth of
     the difference, the estimate to 10 %: measured P̄off 3.5e-9 (9 % of the difference) and

@@ -17,8 +17,7 @@ from ..plumbing.errors import ContinuationError
 from .continuation import APPROACH, Trace, approach_fraction, follow, start_state
 from .curve import Jump, curve_from_columns
 from .grids import Grids
-from .tip import follow_tip, record_fold_elsewhere, tip_direction
-from .whole_curve import (
+from .reading import (
     ADJACENT,
     COLUMNS,
     equilibrium_curve,
@@ -28,6 +27,7 @@ from .whole_curve import (
     refine_force_extrema,
     root_along,
 )
+from .tip import follow_tip, record_fold_elsewhere, tip_direction
 
 #: Headings in (x̄o, δ̄o, P̄) from a landing: a stable branch always moves in δ̄o.
 _DOWN, _UP = np.array([0.0, -1.0, 0.0]), np.array([0.0, 1.0, 0.0])
@@ -98,10 +98,10 @@ def _piece(surface, w, delta, heading, settings, until, on_point, admissible=Non
     its δ̄o): fold = (δ̄o, values before) at the branch's end, or None if `until` was met.
 
     The fold is where dδ̄o/ds = 0 between the last stable and the first unstable point
-    (`whole_curve.root_along`), or one interval earlier (`whole_curve.ADJACENT`: the last point
+    (`reading.root_along`), or one interval earlier (`reading.ADJACENT`: the last point
     flagged stable may lie just past it, its flag from a reused factorisation); where that
     root is not clean (ripple), the parabola in arc length through the last three points
-    (`whole_curve.fold_by_parabola`), or the start if the branch has no more."""
+    (`reading.fold_by_parabola`), or the start if the branch has no more."""
     traced = follow(surface, w, delta, heading, settings, until=until, stop_at_fold=True,
                     on_point=on_point, admissible=admissible)
     fold = beyond = beyond_delta = None

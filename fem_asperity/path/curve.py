@@ -122,7 +122,7 @@ def parabola_vertex(t, y):
 
 def _most_tensile(path):
     """(P̄, δ̄o, ā_c) at the minimum of P̄ along `path`: the lowest sample, which is exact where
-    the minimum is interior to a stable segment (`whole_curve.refine_force_extrema` inserts it)
+    the minimum is interior to a stable segment (`reading.refine_force_extrema` inserts it)
     and a jump's landing otherwise. (A parabola through three samples would move δ̄o by ~1e-4 where P̄
     is flat at its minimum.)"""
     i = int(np.argmin(path.p))

@@ -20,7 +20,8 @@ from scipy.optimize import brentq
 from ..closed_forms.lj import rigid_force
 from ..plumbing.errors import ContinuationError
 from .curve import Jump, parabola_vertex
-from .whole_curve import COLUMNS, path_from_rows, point_row, state_at
+from .reading import COLUMNS, path_from_rows, point_row
+from .whole_curve import state_at
 
 
 def spring_stable(curve, tangents, k):
