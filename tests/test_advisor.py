@@ -285,3 +285,31 @@ def test_inside_the_measured_map_gw_is_bounded_and_chosen(tmp_path):
     result = json.loads((out / "advice.json").read_text())["result"]
     assert result["model"] == once.name and result["unit"] == "Pa"
     assert result["value"] == pytest.approx(once.value)
+
+
+def test_validation_advisor_writes_each_scenes_effects_models_and_choice(tmp_path):
+    """`python -m validation advisor`: one section per scene with a row per effect and per
+    model of the advice, the choice, and the provenance line; a bad scene file among them stops
+    the run in one line before anything is written."""
+    from validation.__main__ import main
+
+    scenes = [EXAMPLES / "stiff_contact_near_dmt.toml", EXAMPLES / "mems_rough_surface.toml"]
+    out = tmp_path / "out"
+    assert main(["advisor", "--scenes", *map(str, scenes), "--out", str(out)]) == 0
+    text = (out / "advisor.md").read_text()
+    study = json.loads((out / "advisor.json").read_text())
+    assert [row["file"] for row in study["scenes"]] == [p.name for p in scenes]
+    assert "Regenerate with `python -m validation advisor" in text
+    for row, path in zip(study["scenes"], scenes):
+        section = text.split(f"## `{path.name}`")[1].split("\n## ")[0]
+        advice = advise(read_scene(path)).records()
+        assert [e["name"] for e in row["advice"]["effects"]] == [
+            e["name"] for e in advice["effects"]]
+        assert all(f"| {e['name']} |" in section for e in advice["effects"])
+        assert all(f"| {m['name']} |" in section for m in advice["models"])
+        assert f"Choice: {advice['message']}" in section
+    bad = tmp_path / "bad.toml"
+    bad.write_text(GOOD.replace("[want]", "[wants]"))
+    with pytest.raises(InputError, match="wants: unknown section"):
+        main(["advisor", "--scenes", str(scenes[0]), str(bad), "--out", str(tmp_path / "o")])
+    assert not (tmp_path / "o").exists()

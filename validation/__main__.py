@@ -6,7 +6,8 @@ paper's law against the solved law; rough-explicit: GW against rough surfaces so
 interacting asperities (all: one small surface; --full: the map over mu, zeta, sigma R eta);
 layered: a bonded layer over thickness and modulus. Curves
 are solved once and stored ($ADHESION_CACHE). accuracy: the speed-accuracy trade of the solvers'
-settings (`validation.accuracy`; not part of all); bench: timings of the main operations, for
+settings (`validation.accuracy`; not part of all); advisor: the scene advisor's table for the
+example scenes (docs/advisor.md; not part of all); bench: timings of the main operations, for
 comparing versions."""
 
 import json
@@ -121,6 +122,12 @@ def build_parser():
     trade.add_argument("--mu", type=float, nargs="+",
                        help="Tabor parameters studied (default: 0.1 1 5 10; --quick: 1)")
     trade.add_argument("--json", action="store_true", help="print a JSON summary")
+    table = commands.add_parser("advisor", help="the scene advisor's effects, models, costs "
+                                "and choice for each scene file (default: the examples')")
+    table.add_argument("--out", type=Path, default=Path("out"), help="output folder")
+    table.add_argument("--scenes", type=Path, nargs="+",
+                       help="scene files (default: examples/*.toml of the source checkout)")
+    table.add_argument("--json", action="store_true", help="print a JSON summary")
     bench = commands.add_parser("bench", help="timings of the main operations")
     bench.add_argument("--json", action="store_true", help="print the timings as JSON")
     for command in (everything, rough):
@@ -247,10 +254,24 @@ def _accuracy(out, args, command):
     return {"files": ["accuracy.md", "accuracy.json", "accuracy.png"], "wall_s": study["wall_s"]}
 
 
+def _advisor(out, scenes, command):
+    """The advisor's table for `scenes` written into `out`; its summary."""
+    from . import advisor_table
+
+    study = advisor_table.run(scenes, step=advisor_table.progress)
+    header = ["# The scene advisor on the example scenes", "", provenance(command),
+              f"The run took {study['wall_s']:.0f} s. Do not edit by hand."]
+    write_atomic(out / "advisor.md", advisor_table.markdown(study, header) + "\n")
+    write_atomic(out / "advisor.json", json.dumps(study, indent=1, allow_nan=False))
+    return {"files": ["advisor.md", "advisor.json"], "wall_s": study["wall_s"]}
+
+
 def _run(args, command, out):
     """The command's outputs written into `out`; its summary."""
     if args.command == "accuracy":
         return _accuracy(out, args, command)
+    if args.command == "advisor":
+        return _advisor(out, args.scenes, command)
     if args.command == "single-asperity":
         return {"files": [name for name, _ in SINGLE_FILES], **_single(out, args, 1, 2)[1]}
     if args.command == "rough-surface":
@@ -311,6 +332,14 @@ def main(argv=None):
         solvable_mu(args.mu, "--mu")
     if args.command in ("all", "rough-surface"):
         positive("--compare-mu", args.compare_mu)  # before anything is written
+    if args.command == "advisor":
+        from advisor.scene import read_scene
+
+        from .advisor_table import default_scenes
+
+        args.scenes = args.scenes or default_scenes()
+        for path in args.scenes:  # every file checked before anything is written
+            read_scene(path)
     if getattr(args, "ship", False) and not args.full:
         parser.error("--ship writes the map: it needs --full")
     output_folder(args.out, "--out", PROG)
