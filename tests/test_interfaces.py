@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 from scipy.linalg import LinAlgError
 
+from fem_asperity.path.curve import GridMoves
 from fem_asperity.path.grids import EdgeGrids, FixedGrid, Grids
 from fem_asperity.plumbing.errors import InputError
 from fem_asperity.solids.fe import Solid
@@ -41,7 +42,8 @@ def test_each_discretisation_builds_grids_of_the_grids_interface(mu, method, tra
     grids = discretisation(mu, "draft", method=method, track_edge=track).grids(mu)
     assert isinstance(grids, kind) and isinstance(grids, Grids)
     assert grids.start.mu == mu
-    assert (grids.summary() == "") == (kind is FixedGrid)  # only moving grids have news
+    assert (grids.summary(GridMoves()) == "") == (kind is FixedGrid)  # only moving grids say
+    assert grids.follows_edge == (kind is EdgeGrids)
 
 
 @pytest.mark.parametrize("mu, method, track, kind, grading", [

@@ -143,7 +143,7 @@ def test_the_approach_followed_in_the_tip_gives_the_arc_length_paths_curve(monke
 
     def spy(*args, **kwargs):
         path = tip.follow_tip(*args, **kwargs)
-        points.append((args[4], len(path.trace.delta)))
+        points.append((args[5], len(path.trace.delta)))
         return path
 
     monkeypatch.setattr(branches, "follow_tip", spy)

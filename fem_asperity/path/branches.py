@@ -15,7 +15,7 @@ import numpy as np
 
 from ..plumbing.errors import ContinuationError
 from .continuation import APPROACH, Trace, approach_fraction, follow, start_state
-from .curve import Jump, curve_from_columns
+from .curve import GridMoves, Jump, Paths, curve_from_columns
 from .grids import Grids
 from .reading import (
     ADJACENT,
@@ -47,18 +47,18 @@ APPROACH_SHARE = 0.6
 RETRACTION_SHOWN_MAX = 0.98
 
 
-def follow_branch(grids, surface, w, delta, heading, settings, until, on_point):
+def follow_branch(grids, moves, surface, w, delta, heading, settings, until, on_point):
     """(stable Trace from (w, δ) on `surface`, fold, state past the fold, surface at the end,
     landing): `_piece`s of the branch, moved to a new grid (`grids.regrid`, see `grids`) each
     time the contact edge leaves the current one's band; on a fixed grid, one piece. Where a
     move lands elsewhere (REGRID_JUMP) the branch ends in a fold there, landing = (surface, w)
     of the jump; else landing is None. A branch in contact on grids that follow the edge is
     followed in its crack tip's radius first (`tip.follow_tip`), then, where that hands over,
-    as any branch."""
+    as any branch. What moving to new grids changed goes into `moves` (a `GridMoves`)."""
     merged = Trace()
     direction = tip_direction(grids, surface, w, delta, heading)
     if direction:
-        path = follow_tip(grids, surface, w, delta, direction, settings, until=until,
+        path = follow_tip(grids, moves, surface, w, delta, direction, settings, until=until,
                           on_point=on_point)
         merged.extend(path.trace)
         if path.fold is not None or (path.last is not None and until(path.trace)):
@@ -71,7 +71,7 @@ def follow_branch(grids, surface, w, delta, heading, settings, until, on_point):
         traced, fold, beyond, beyond_delta = _piece(surface, w, delta, heading, settings, done,
                                                     on_point, partial(grids.admits, surface))
         if fold is not None and beyond is not None and direction < 0 and traced.delta:
-            record_fold_elsewhere(grids, surface, (traced.states[-1], traced.delta[-1]),
+            record_fold_elsewhere(grids, moves, surface, (traced.states[-1], traced.delta[-1]),
                                   (beyond, beyond_delta), settings.tol)
         if fold is not None or until(traced):
             merged.extend(traced)
@@ -85,7 +85,7 @@ def follow_branch(grids, surface, w, delta, heading, settings, until, on_point):
         change = abs(surface.force(w, delta) - before["p"])
         if change > REGRID_JUMP:
             return merged, (delta, before), None, surface, (surface, w)
-        grids.record_move(change, abs(surface.contact(w, delta)[1] - before["a_c"]))
+        moves.record_move(change, abs(surface.contact(w, delta)[1] - before["a_c"]))
 
 
 def _done_or_off_grid(until, grids, surface, tr):
@@ -186,9 +186,9 @@ def _approach_branch(branches, delta, x, jump):
 
 
 def stable_paths(grids: Grids, settings, progress=None):
-    """(approach, retraction, jumps in, jumps out, equilibrium, traced): the two paths under δ̄o
-    control (as `whole_curve.walk`), the stable branches traced as one `Curve` (approach branches
-    first, `branch` numbering them) and as one Trace (states, counters: landings included).
+    """`Paths`: the two paths under δ̄o control (as `whole_curve.walk`), the stable branches
+    traced as one `Curve` (approach branches first, `branch` numbering them) and as one Trace
+    (states, counters: landings included), and what moving between grids changed.
 
     grids: the surfaces to run on (`grids.Grids`): one `FixedGrid`, whose surface then holds
     every state of the Trace, or `EdgeGrids` that follow the contact edge from `grids.start`.
@@ -197,7 +197,7 @@ def stable_paths(grids: Grids, settings, progress=None):
     retraction on as its contact radius shrinks; 1 at the end only, never falling.
     Raises ContinuationError where a branch cannot be followed or a jump finds no landing.
     """
-    traced, surface = Trace(), grids.start
+    traced, surface, moves = Trace(), grids.start, GridMoves()
     w, delta, traced.newton_iterations = start_state(surface, settings)
     shown = 0.0  # approach_fraction dips where the force falls after a jump-in: never shown
 
@@ -212,9 +212,9 @@ def stable_paths(grids: Grids, settings, progress=None):
     branches, starts, approach, jumps_in, heading = [], [], [], [], APPROACH
     while True:
         starts.append(surface)
-        branch, fold, beyond, surface, landed = follow_branch(grids, surface, w, delta, heading,
-                                                        settings, reached_end,
-                                                        report if progress else None)
+        branch, fold, beyond, surface, landed = follow_branch(
+            grids, moves, surface, w, delta, heading, settings, reached_end,
+            report if progress else None)
         branches.append(branch)
         approach += [point_row(branch, i, len(jumps_in)) for i in range(len(branch.delta))]
         if fold is None:
@@ -226,7 +226,8 @@ def stable_paths(grids: Grids, settings, progress=None):
                                      into_contact=True)
         jumps_in.append(jump)
         delta, heading = fold[0], _DOWN
-    retraction, jumps_out, extra = _retract(grids, starts, settings, branches, traced, progress)
+    retraction, jumps_out, extra = _retract(grids, moves, starts, settings, branches, traced,
+                                            progress)
     ids = []
     for k, branch in enumerate(branches + extra):
         traced.extend(branch)
@@ -235,11 +236,11 @@ def stable_paths(grids: Grids, settings, progress=None):
                                      np.ones(len(ids), dtype=bool), ids)
     if progress is not None:
         progress(1.0)
-    return (path_from_rows(approach), path_from_rows(retraction), jumps_in, jumps_out,
-            equilibrium, traced)
+    return Paths(path_from_rows(approach), path_from_rows(retraction), jumps_in, jumps_out,
+                 equilibrium, traced, moves)
 
 
-def _retract(grids, starts, settings, branches, counter, progress):
+def _retract(grids, moves, starts, settings, branches, counter, progress):
     """(rows, jumps, branches traced): back along approach branch j from its point c − 1, then on
     from its first point (a landing, on the surface starts[j]) by tracing, until a branch reaches
     x_start again."""
@@ -266,8 +267,8 @@ def _retract(grids, starts, settings, branches, counter, progress):
             return rows, jumps, extra
         surface, w, delta, skip = starts[j], branches[j].states[0], branches[j].delta[0], 1
         while True:
-            branch, fold, beyond, surface, landed = follow_branch(grids, surface, w, delta, _UP,
-                                                            settings, far, report)
+            branch, fold, beyond, surface, landed = follow_branch(
+                grids, moves, surface, w, delta, _UP, settings, far, report)
             extra.append(branch)
             rows += [point_row(branch, i, len(jumps)) for i in range(skip, len(branch.delta))]
             if fold is None:

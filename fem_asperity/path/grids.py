@@ -36,6 +36,7 @@ from ..closed_forms.reference import (
 from ..plumbing.errors import ContinuationError, InputError
 from ..solids.bem import BoussinesqSurface, radial_grid
 from .continuation import correct_at_delta
+from .curve import GridMoves
 from .landing import land, peel
 from .surface import TIP_GAP, LJSurface, SurfaceShape
 
@@ -121,11 +122,10 @@ class EdgeGrids:
     uniform pre-contact grid; r_max: the traction radius; fit, ahead: the reach of a grid and
     the lead of the next, in bands (None: FIT and AHEAD; the FE's are FE_FIT and FE_AHEAD).
     Counters: `regrids` (grids built), `largest_nodes`, `dofs` (the unknowns of the largest
-    solid), `largest_change` and `largest_radius_change` (the largest |ΔP̄| and |Δā_c| of a
-    state moved to a new grid while on a branch: a measure of the discretisation error),
-    `largest_fold_change` (the largest |Δδ̄o| of a fold found again on grids placed otherwise,
-    `record_fold`).
+    solid).
     """
+
+    follows_edge = True
 
     def __init__(self, mu, *, h, band, h_inside, contact_h, contact_r, r_max, growth=0.1,
                  radius_ratio=None, elastic_on=BoussinesqSurface, elastic=None, fit=None,
@@ -144,7 +144,6 @@ class EdgeGrids:
         self.start = self._surface(radial_grid(h=contact_h, r_fine=contact_r, r_max=r_max,
                                                growth=growth), (0.0, 0.0), (0.0, 0.0))
         self.regrids, self.largest_nodes = 0, self.start.r_nodes.size
-        self.largest_change = self.largest_radius_change = self.largest_fold_change = 0.0
 
     def _surface(self, nodes, centre, edges):
         elastic = self.elastic_on(nodes)
@@ -337,23 +336,14 @@ class EdgeGrids:
         interpolated linearly; not in equilibrium there: `land` it)."""
         return self.move(SurfaceShape(nodes, radius_ratio=self.radius_ratio), w, delta)
 
-    def record_move(self, change, radius_change):
-        """Keep the largest |ΔP̄| and |Δā_c| of a state moved to a new grid while on a branch."""
-        self.largest_change = max(self.largest_change, change)
-        self.largest_radius_change = max(self.largest_radius_change, radius_change)
-
-    def record_fold(self, change):
-        """Keep the largest |Δδ̄o| of a fold found again on grids placed otherwise."""
-        self.largest_fold_change = max(self.largest_fold_change, change)
-
-    def summary(self):
-        """How many grids followed the edge, their largest size, the largest move's |ΔP̄| and
-        |Δā_c|, and the largest |Δδ̄o| of a fold found again elsewhere."""
+    def summary(self, moves):
+        """How many grids followed the edge, their largest size, and from the path's `moves`
+        (`curve.GridMoves`) the largest move's |ΔP̄| and |Δā_c| and the largest |Δδ̄o| of a fold
+        found again elsewhere."""
         return (f"; {self.regrids} grids followed the contact edge (at most "
                 f"{self.largest_nodes} nodes), moving a state to a new grid changed P̄ by at "
-                f"most {self.largest_change:.1e} and ā_c by at most "
-                f"{self.largest_radius_change:.1e}, and a fold's δ̄o by at most "
-                f"{self.largest_fold_change:.1e}")
+                f"most {moves.force:.1e} and ā_c by at most {moves.radius:.1e}, and a fold's "
+                f"δ̄o by at most {moves.fold:.1e}")
 
     def move(self, surface, w, delta, *, centre=None):
         """(surface, w) of the state (w, δ̄o) moved to the grid of its edges (the pre-contact
@@ -378,6 +368,8 @@ class FixedGrid:
     """The one surface of a curve on a fixed mesh or grid (FE, uniform BEM): nothing moves.
 
     elastic: the `ElasticSurface` behind it (kept for field output); start: its `LJSurface`."""
+
+    follows_edge = False
 
     def __init__(self, elastic, mu, *, radius_ratio=None):
         self.elastic = elastic
@@ -411,14 +403,8 @@ class FixedGrid:
         """`land` (a state never leaves a fixed grid, so this is not called)."""
         return self.land(surface, w, delta, tol=tol)
 
-    def record_move(self, change, radius_change):
-        """Never called: a state never leaves a fixed grid."""
-
-    def record_fold(self, change):
-        """Never called: a fold is never found again on another grid."""
-
-    def summary(self):
-        """Nothing to add to a curve's message."""
+    def summary(self, moves):
+        """Nothing to add to a curve's message: no state moves."""
         return ""
 
 
@@ -439,15 +425,15 @@ class Grids(Protocol):
     landing_guess(surface, δ̄o, into_contact=...): (surface, w) of a state near where a jump
     from a state on `surface` lands, to land from instead, or None (then it lands from the
     fold).
-    record_move(ΔP̄, Δā_c): note the force and contact-radius changes of a state moved to a new
-    grid. record_fold(Δδ̄o): note how far a fold moved when found again on grids placed
-    otherwise. transplant(nodes, w, δ̄o): (surface, w) of a state given on other radial nodes, moved
-    here. summary(): a clause for the curve's message. dofs, largest_nodes: the cost of the
-    largest solid used.
+    transplant(nodes, w, δ̄o): (surface, w) of a state given on other radial nodes, moved
+    here. summary(moves): a clause for the curve's message, with the path's `curve.GridMoves`.
+    follows_edge: whether the grids move with the contact edge. dofs, largest_nodes: the cost
+    of the largest solid used.
     """
 
     start: LJSurface
     elastic: object
+    follows_edge: bool
     dofs: int
     largest_nodes: int
 
@@ -464,11 +450,7 @@ class Grids(Protocol):
     def landing_guess(self, surface: LJSurface, delta: float, *,
                       into_contact: bool) -> tuple[LJSurface, np.ndarray] | None: ...
 
-    def record_move(self, change: float, radius_change: float) -> None: ...
-
-    def record_fold(self, change: float) -> None: ...
-
     def transplant(self, nodes: np.ndarray, w: np.ndarray,
                    delta: float) -> tuple[LJSurface, np.ndarray]: ...
 
-    def summary(self) -> str: ...
+    def summary(self, moves: GridMoves) -> str: ...

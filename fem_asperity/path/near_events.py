@@ -24,7 +24,7 @@ import numpy as np
 from ..plumbing.errors import ContinuationError
 from .branches import follow_branch
 from .continuation import Linearisation, correct
-from .curve import ESTIMATED, JUMP_CONTACT, Jump, contact_index
+from .curve import ESTIMATED, JUMP_CONTACT, GridMoves, Jump, contact_index
 
 #: Points of the curve traced again before and after each event, 3: the window then spans at
 #: least three turn limits either side, well beyond how far the event moves between the two
@@ -184,8 +184,9 @@ class _Near:
             return sign * (tr.delta[-1] - after_delta) >= 0.0 or (until is not None
                                                                  and until(tr))
 
-        branch, fold = follow_branch(self.grids, surface, w, delta, heading, self.settings, done,
-                                     None)[:2]
+        # the moves between the finer grids are not read: the estimate is the events' change
+        branch, fold = follow_branch(self.grids, GridMoves(), surface, w, delta, heading,
+                                     self.settings, done, None)[:2]
         self._count(branch.newton_iterations, windows=1)
         if until is None:
             self._windows[key] = branch, fold

@@ -18,7 +18,6 @@ from scipy.optimize import brentq
 
 from ..plumbing.errors import ContinuationError
 from .continuation import DELTA_ROW, Trace, TraceSettings, correct
-from .grids import EdgeGrids
 from .held_tip import Held, along, as_held, contact_radius_rate, held, held_from, is_stable
 
 #: Tip steps in bands: the first, growth after ≤ EASY Newton iterations, the shortest (then
@@ -62,14 +61,14 @@ def tip_direction(grids, surface, w, delta, heading):
     approach (δ̄o falling) where TIP_DA spans at least APPROACH_BANDS bands; else 0. Below, a
     grid per step of at most about a band costs more than the arc length's grids, which serve
     about 1.5 bands each (`benchmarks/large_mu.py` times both)."""
-    if not (isinstance(grids, EdgeGrids) and surface.crack_tip(w, delta) > END * grids.band):
+    if not (grids.follows_edge and surface.crack_tip(w, delta) > END * grids.band):
         return 0
     if heading[1] < 0.0:
         return 1 if TIP_DA >= APPROACH_BANDS * grids.band else 0
     return -1
 
 
-def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point=None):
+def follow_tip(grids, moves, surface, w, delta, direction, settings, *, until, on_point=None):
     """Follow the stable branch from the equilibrium (w, δ̄o) on `surface`, the crack tip moving
     in `direction` (`tip_direction`), until `until(trace)` holds, δ̄o folds (the jump-out), or,
     receding, the tip nears the axis (END bands), or the steps fall below SMALLEST bands (then the
@@ -108,7 +107,7 @@ def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point
                 trace.rejected_steps += 1
                 continue
             if not grids.admits(new.surface, new.w, new.delta):
-                new = _moved(grids, new, tol, record=False)
+                new = _moved(grids, new, tol)
         if new is None:
             step *= 0.5
             trace.rejected_steps += 1
@@ -123,17 +122,18 @@ def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point
         if stable != new.before_fold:  # another mode than the tip's: `follow` goes on
             break
         if not stable:
-            return _fold(grids, trace, state, new, direction, tol)
+            return _fold(grids, moves, trace, state, new, direction, tol)
         past_extremum = past_extremum or state.rates[2] * new.rates[2] < 0.0
         _insert_roots(grids, trace, state, new, direction, tol,
                       (_force_rate, _centre_gap_above_contact) if direction > 0
                       else (_force_rate,))
         if not grids.fits(new.surface, new.w, new.delta):
-            new = _moved(grids, new, tol, record=not past_extremum, radius=direction > 0)
+            new = _moved(grids, new, tol, moves=None if past_extremum else moves,
+                         radius=direction > 0)
             if new is None:
                 break
         elif not past_extremum and len(trace.delta) % MEASURED_EVERY == 0:
-            _moved_ahead(grids, new, direction, tol, radius=direction > 0)
+            _moved_ahead(grids, new, direction, tol, moves=moves, radius=direction > 0)
         radius_rate = contact_radius_rate(state, new)
         state = new
         record(state)
@@ -142,32 +142,32 @@ def follow_tip(grids, surface, w, delta, direction, settings, *, until, on_point
     return TipPath(trace, None, None, state.surface, state)
 
 
-def _moved(grids, state, tol, *, record=True, radius=False, centre=None):
+def _moved(grids, state, tol, *, moves=None, radius=False, centre=None):
     """`state` solved again, its tip held, on the grid of its edges (`EdgeGrids.move`, or
-    centred on the (ā_c, tip) `centre`; None where Newton fails there). With `record` (a state
+    centred on the (ā_c, tip) `centre`; None where Newton fails there). With `moves` (a state
     before P̄'s extremum, the retraction's one estimated force, where grids agree far better
     than next to the fold; and the approach's states) the change of P̄ at the state's δ̄o is
-    recorded (`record_move`), as `branches.follow_branch` measures it. With `radius` (the
+    recorded (`GridMoves.record_move`), as `branches.follow_branch` measures it. With `radius` (the
     approach, whose ā_c at P̄max is an event) the change of ā_c too; not on the retraction,
     where ā_c moves by tenths of √(Rε) between grids as its compressive contact vanishes."""
     surface, w = grids.move(state.surface, state.w, state.delta, centre=centre)
     moved = held(surface, w, state.delta, state.tip, tol=tol)
-    if moved is not None and record:
+    if moved is not None and moves is not None:
         at_delta = correct(surface, moved.w, moved.delta, DELTA_ROW,
                            np.array([0.0, state.delta, 0.0]), 0.0, tol=tol)
         w_at, d_at = (moved.w, moved.delta) if at_delta is None else (at_delta[0], state.delta)
         force, contact = surface.force(w_at, d_at), surface.contact(w_at, d_at)
-        grids.record_move(abs(force - state.force),
+        moves.record_move(abs(force - state.force),
                           abs(contact[1] - state.contact[1]) if radius else 0.0)
     return moved
 
 
-def _moved_ahead(grids, state, direction, tol, **record):
+def _moved_ahead(grids, state, direction, tol, **options):
     """`_moved` onto a grid centred the grids' lead (`EdgeGrids.ahead`) further along, in the
     tip's `direction`, than `state`'s edges: a placement the state's own grid does not have."""
     ahead = direction * grids.ahead * grids.band
     return _moved(grids, state, tol, centre=(state.contact[1] + ahead, state.tip + ahead),
-                  **record)
+                  **options)
 
 
 def _root(grids, first, second, of, tol):
@@ -227,7 +227,7 @@ def _delta_rate(held):
     return held.rates[1]
 
 
-def record_fold_elsewhere(grids, surface, last, beyond, tol):
+def record_fold_elsewhere(grids, moves, surface, last, beyond, tol):
     """`_record_fold_elsewhere` for a retraction followed in arc length up to its fold
     (`branches.follow_branch`, where the tip path handed over before the jump-out), its last
     stable state `last` and the first past it, `beyond`, each (w, δ̄o) on `surface`: the
@@ -243,18 +243,18 @@ def record_fold_elsewhere(grids, surface, last, beyond, tol):
     except ContinuationError:  # a diagnostic: it never costs the curve
         return
     if fold is not None:
-        _record_fold_elsewhere(grids, fold.delta, *states, -1, tol)
+        _record_fold_elsewhere(grids, moves, fold.delta, *states, -1, tol)
 
 
-def _record_fold_elsewhere(grids, fold, last, beyond, direction, tol):
+def _record_fold_elsewhere(grids, moves, fold, last, beyond, direction, tol):
     """Find the fold at δ̄o = `fold` again from the held `last` and `beyond`, each solved on a
     grid centred the grids' lead further along (as `follow_tip` measures its states), and record
-    how far its δ̄o moved (`record_fold`): the error estimate's finer partner places its grids
-    alike, and misses this term otherwise (`solve.FOLDS`). Where the
+    how far its δ̄o moved in `moves` (`GridMoves.record_fold`): the error estimate's finer
+    partner places its grids alike, and misses this term otherwise (`solve.FOLDS`). Where the
     two moved states lie on one side of the fold, up to BRACKETING more states a bracket's
     width apart, each on the branch (`along`). A measurement that fails records nothing."""
     try:
-        first, second = [_moved_ahead(grids, state, direction, tol, record=False)
+        first, second = [_moved_ahead(grids, state, direction, tol)
                          for state in (last, beyond)]
         step = beyond.tip - last.tip
         for extension in range(BRACKETING + 1):
@@ -263,7 +263,7 @@ def _record_fold_elsewhere(grids, fold, last, beyond, direction, tol):
             if _delta_rate(first) * _delta_rate(second) < 0.0:
                 again = _root(grids, first, second, _delta_rate, tol)
                 if again is not None:
-                    grids.record_fold(abs(again.delta - fold))
+                    moves.record_fold(abs(again.delta - fold))
                 return
             if extension == BRACKETING:
                 return
@@ -278,14 +278,14 @@ def _record_fold_elsewhere(grids, fold, last, beyond, direction, tol):
         return
 
 
-def _fold(grids, trace, last, beyond, direction, tol):
+def _fold(grids, moves, trace, last, beyond, direction, tol):
     """The `TipPath` ending at the fold of δ̄o between the last stable state `last` and
     `beyond`, the extremum of P̄ before it included."""
     fold = _root(grids, last, beyond, _delta_rate, tol)
     if fold is None:  # the last stable state stands in for it
         fold = last
     elif direction < 0:  # the jump-out, whose estimate adds the move (`solve.FOLDS`)
-        _record_fold_elsewhere(grids, fold.delta, last, beyond, direction, tol)
+        _record_fold_elsewhere(grids, moves, fold.delta, last, beyond, direction, tol)
     _insert_roots(grids, trace, last, fold, direction, tol)
     radius = fold.contact[1]
     values = dict(x=fold.surface.centre_gap(fold.w, fold.delta), p=fold.force, a_c=radius,

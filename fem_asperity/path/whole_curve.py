@@ -10,7 +10,7 @@ import numpy as np
 
 from ..plumbing.errors import ContinuationError
 from .continuation import correct, trace
-from .curve import Jump
+from .curve import Jump, Paths
 from .reading import (
     equilibrium_curve,
     fold_by_parabola,
@@ -75,12 +75,12 @@ def walk(surface, trace, curve, order):
 
 
 def whole_curve_paths(surface, settings, progress=None):
-    """(approach, retraction, jumps in, jumps out, equilibrium, traced) as
-    `branches.stable_paths`, read off the whole equilibrium curve, unstable branches included."""
+    """`Paths` as `branches.stable_paths`, read off the whole equilibrium curve, unstable branches
+    included (on one grid: no moves)."""
     traced = trace(surface, settings, progress=progress)
     refine_force_extrema(surface, traced)
     curve = equilibrium_curve(traced)
     order = np.arange(len(curve))
     approach, jumps_in = walk(surface, traced, curve, order)
     retraction, jumps_out = walk(surface, traced, curve, order[::-1])
-    return approach, retraction, jumps_in, jumps_out, curve, traced
+    return Paths(approach, retraction, jumps_in, jumps_out, curve, traced)

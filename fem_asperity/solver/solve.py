@@ -23,7 +23,6 @@ from threadpoolctl import threadpool_limits
 from ..closed_forms.lj import bradley_force
 from ..path.branches import stable_paths
 from ..path.curve import ESTIMATED, read_events
-from ..path.grids import FixedGrid
 from ..path.load_line import load_line_paths
 from ..path.near_events import events_near
 from ..path.whole_curve import whole_curve_paths
@@ -140,12 +139,13 @@ def _solve_traced(mu, disc, *, solid, radius_ratio, unstable_branch, spring_cons
                          "branches only: no unstable_branch or spring_constant there")
     with threadpool_limits(PATH_BLAS_THREADS, user_api="blas"):
         grids = disc.grids(mu, solid=solid, radius_ratio=radius_ratio)
-        fixed = isinstance(grids, FixedGrid)
         if whole:
-            solved = whole_curve_paths(grids.start, disc.trace, progress)
+            paths = whole_curve_paths(grids.start, disc.trace, progress)
         else:
-            solved = stable_paths(grids, disc.trace, progress)
-        approach, retraction, jumps_in, jumps_out, curve, traced = solved
+            paths = stable_paths(grids, disc.trace, progress)
+        approach, retraction, jumps_in, jumps_out = (paths.approach, paths.retraction,
+                                                     paths.jumps_in, paths.jumps_out)
+        curve, traced = paths.equilibrium, paths.traced
         if spring_constant is not None:
             (approach, retraction, jumps_in, jumps_out, *_, z_in, z_out) = load_line_paths(
                 grids.start, traced, curve, spring_constant)
@@ -155,7 +155,8 @@ def _solve_traced(mu, disc, *, solid, radius_ratio, unstable_branch, spring_cons
         folds = int(curve.branch.max())
     else:
         folds = len(jumps_in) + len(jumps_out)
-    message = f"{folds} folds of the equilibrium curve" + grids.summary()
+    moves = paths.moves if grids.follows_edge else None  # none on one grid or mesh
+    message = f"{folds} folds of the equilibrium curve" + grids.summary(moves)
     sized_for = sizing_mu(mu, solid)
     if sized_for != mu:
         message += (f"; elements sized for the layer's Tabor parameter {sized_for:.4g}, the more "
@@ -188,9 +189,9 @@ def _solve_traced(mu, disc, *, solid, radius_ratio, unstable_branch, spring_cons
         unstable_branch=unstable_branch,
         spring_constant=spring_constant,
         z_jumps=z_jumps,
-        regrid_change=None if fixed else grids.largest_change,
-        regrid_radius_change=None if fixed else grids.largest_radius_change,
-        regrid_fold_change=None if fixed else grids.largest_fold_change,
+        regrid_change=None if moves is None else moves.force,
+        regrid_radius_change=None if moves is None else moves.radius,
+        regrid_fold_change=None if moves is None else moves.fold,
         model=None if grids.elastic is None else Model(grids.elastic, grids.start, traced),
     ), traced
 
