@@ -15,7 +15,7 @@ import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 from contextlib import contextmanager
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 from threadpoolctl import threadpool_limits
@@ -333,6 +333,24 @@ def estimate_kind(estimate_by, method, solid):
     return estimate_by
 
 
+@dataclass(frozen=True)
+class _Estimated:
+    """A curve (`result`) and its error estimate as one strategy made it: the `estimate` (None
+    where it failed), the clause the curve's message gains (`note`) and its `status` with it."""
+
+    result: CurveResult
+    estimate: dict | None
+    note: str
+    status: str
+
+    @classmethod
+    def failed(cls, result, exc, what="its finer solve", hint=""):
+        """The curve whose estimate's solve (`what`) failed with `exc`; the note ends with
+        `hint` (what to try instead)."""
+        note = f"; no error estimate: {what} failed ({type(exc).__name__}: {exc}){hint}"
+        return cls(result, None, note, worst_status(result.status, "no_estimate"))
+
+
 def _with_estimate(mu, disc, options, progress, by):
     """The curve on `disc` and its error estimate made as `by` says ('finer' or 'bem', see
     `solve_curve`), in a second thread."""
@@ -344,7 +362,8 @@ def _with_estimate(mu, disc, options, progress, by):
     else:
         estimated = _estimated_near_events
     with threadpool_limits(PATH_BLAS_THREADS, user_api="blas"), ThreadPoolExecutor(1) as pool:
-        result, estimate, note, status = estimated(mu, disc, options, progress, pool)
+        made = estimated(mu, disc, options, progress, pool)
+    result, estimate = made.result, made.estimate
     if by == "finer" and estimate is not None and result.regrid_change is not None:
         moved = {**dict.fromkeys(FORCES, result.regrid_change),
                  **dict.fromkeys(RADII, result.regrid_radius_change),
@@ -354,7 +373,7 @@ def _with_estimate(mu, disc, options, progress, by):
     if progress:
         progress(1.0)
     return replace(result, error_estimate=_added(estimate, floor), estimated_by=by,
-                   estimate_floor=floor, status=status, message=result.message + note,
+                   estimate_floor=floor, status=made.status, message=result.message + made.note,
                    wall_s=time.perf_counter() - start)
 
 
@@ -375,7 +394,7 @@ def _added(estimate, extra):
 
 
 def _estimated_near_events(mu, disc, options, progress, pool):
-    """(result, estimate, note, status): the curve, then its events solved again on the
+    """`_Estimated`: the curve, then its events solved again on the
     estimate's discretisation near where the curve has them (`path.near_events`: a fraction of
     a whole finer solve). The finer surfaces are built on the second core meanwhile (the FE's
     condensation)."""
@@ -396,9 +415,10 @@ def _estimated_near_events(mu, disc, options, progress, pool):
         note = _missed(near["missed"]) + (
             f"; error estimate from the finer discretisation traced near each event "
             f"({near['windows']} windows, {near['newton_iterations']} Newton iterations)")
-        return result, _estimate(a, solved_on, near, partner_on), note, result.status
+        return _Estimated(result, _estimate(a, solved_on, near, partner_on), note,
+                          result.status)
     except Exception as exc:  # the estimate never costs the result: whatever stopped it
-        return _without_estimate(result, exc)
+        return _Estimated.failed(result, exc)
 
 
 def _missed(missed):
@@ -411,13 +431,6 @@ def _missed(missed):
     return "".join(f"; no error estimate for {', '.join(keys)}: near the curve's, the finer "
                    f"discretisation has none ({reason}); try a finer accuracy"
                    for reason, keys in reasons.items())
-
-
-def _without_estimate(result, exc, what="its finer solve", hint=""):
-    """(result, estimate, note, status) of a curve whose estimate's solve (`what`) failed with
-    `exc`; the note ends with `hint` (what to try instead)."""
-    note = f"; no error estimate: {what} failed ({type(exc).__name__}: {exc}){hint}"
-    return result, None, note, worst_status(result.status, "no_estimate")
 
 
 @contextmanager
@@ -436,7 +449,7 @@ def _alongside(pool, progress, job, *args, **kwargs):
 
 
 def _estimated_by_whole_solve(mu, disc, options, progress, pool):
-    """(result, estimate, note, status): the curve and, on the second core alongside, the whole
+    """`_Estimated`: the curve and, on the second core alongside, the whole
     curve again on the estimate's discretisation (the whole curve, unstable branches included,
     holds the load-line events, which `path.near_events` does not follow)."""
     # The dense factorisations release the GIL, so the two curves share the two cores (one BLAS
@@ -454,14 +467,14 @@ def _estimated_by_whole_solve(mu, disc, options, progress, pool):
             if partner.ripples:
                 raise ContinuationError(f"it rippled ({partner.folds} folds)")
             a, b = result.events.records(), partner.events.records()
-            return (result, _estimate(a, solved_on, b, partner_on), _one_sided(a, b),
-                    result.status)
+            return _Estimated(result, _estimate(a, solved_on, b, partner_on), _one_sided(a, b),
+                              result.status)
         except Exception as exc:  # the estimate never costs the result: whatever stopped it
-            return _without_estimate(result, exc)
+            return _Estimated.failed(result, exc)
 
 
 def _estimated_by_bem(mu, disc, options, progress, pool):
-    """(result, estimate, note, status): the FE curve and, on the second core alongside, the
+    """`_Estimated`: the FE curve and, on the second core alongside, the
     boundary integral's curve at the FE's preset (`disc.name`) with its own 'finer' estimate,
     on grids that follow the edge wherever the FE's do (`_estimate_against_bem`)."""
     bem_disc = _discretisation(mu, disc.name, method="bem", p_end=disc.trace.p_end,
@@ -470,9 +483,10 @@ def _estimated_by_bem(mu, disc, options, progress, pool):
                     by="finer") as (report, bem_job, _):
         result, _, _ = _solve_refining(mu, disc, progress=report, **options)
         try:
-            return (result, *_estimate_against_bem(result, bem_job.result()), result.status)
+            return _Estimated(result, *_estimate_against_bem(result, bem_job.result()),
+                              result.status)
         except Exception as exc:  # the estimate never costs the result: whatever stopped it
-            return _without_estimate(result, exc, "the boundary integral's curve",
+            return _Estimated.failed(result, exc, "the boundary integral's curve",
                                      hint="; estimate_by='finer' estimates the FE from its own "
                                           "finer mesh instead")
 
