@@ -33,16 +33,14 @@ EDGE_SHARE = 0.125
 #: A moved system refines each solve up to MOVED_REFINEMENTS times, until a correction is
 #: ≤ ACCEPT of the step; test_surface_solver.py::test_moved_linearisation_solves_like_a_fresh_one.
 MOVED_REFINEMENTS, ACCEPT = 3, 1e-2
-#: Inverse iterations of the stability flag, and the Rayleigh quotient's bounds (of the
-#: Jacobi-scaled ‖J‖∞) for a sure sign: ten times single precision's rounding above, double's
-#: below (docs/methods.md); test_surface_solver.py::test_stability_below_single_precision_*.
+#: The stability flag's inverse iterations and sure-sign bounds on its Rayleigh quotient (of the
+#: scaled ‖J‖∞; docs/methods.md §3); test_surface_solver.py::test_stability_below_single_*.
 SOFTEST_ITERATIONS, SURE_SIGN, ROUNDING = 3, 6e-7, 1e-14
 #: A border eliminated by Cholesky is degenerate (LU instead) below this relative size of its
 #: Schur complement: double precision's cancellation. Not pinned by a test.
 DEGENERATE_BORDER = 1e-12
-#: The pin's penalty ρ u uᵀ is PIN_PENALTY × the largest elastic diagonal entry at the pin: large
-#: enough to make J + ρ u uᵀ positive definite where the pin holds J's one unstable direction.
-#: Not pinned by a test.
+#: The pin's penalty ρ u uᵀ, in the largest elastic diagonal entry at the pin: J + ρ u uᵀ positive
+#: definite where the pin holds J's one unstable mode; test_tip.py::test_an_indefinite_prediction*.
 PIN_PENALTY = 10.0
 #: The factorisations of J a caller may try, in its order, before LU of the whole matrix:
 #: J in single precision, J in double precision, J + ρ u uᵀ in single precision.
