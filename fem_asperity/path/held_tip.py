@@ -66,7 +66,7 @@ def _bordered(surface, w, delta, pin):
     tip's unstable mode. Returns (the `BorderedSystem`, ∂g/∂δ, ∂P̄/∂δ)."""
     g_delta, p_delta, slope = surface.sensitivities(w, delta)
     system = BorderedSystem(surface, slope, g_delta, np.append(-pin, 1.0),
-                            factorisations=(SINGLE, PINNED))
+                            factorisations=(SINGLE, PINNED), lu=np.float64, stability=False)
     return system, g_delta, p_delta
 
 

@@ -183,7 +183,8 @@ def pinned(surface, w, delta, tip, *, tol=PEEL_TOL, max_iterations=PEEL_NEWTON):
     for iteration in range(1, max_iterations + 1):
         g = surface.residual(w, delta)
         system = BorderedSystem(surface, surface.sensitivities(w, delta)[2], pin, border,
-                                factorisations=(PINNED,), lu=False, refinements=0)
+                                factorisations=(PINNED,), lu=None, refinements=0,
+                                stability=False)
         if system.failed:
             return Pinned(w, iteration, False, np.nan)
         step, multiplier = system.solve(np.append(-g, held_value - pin @ w))

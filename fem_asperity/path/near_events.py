@@ -86,7 +86,7 @@ def events_near(grids, settings, traced, branch, approach, retraction, jump_in, 
     # the jump-in's is traced here (the curve they estimate has been traced by then, so its
     # thread waits; the dense factorisations release the GIL). Each thread reads the trace and
     # builds its own states; what both write is locked (the counters) or keyed apart (the
-    # window cache; the grids' counters, which events_near's callers do not read). The same
+    # window cache; the grids' regrid counters, which events_near's callers do not read). The same
     # events as one after the other: test_near_events.py.
     with ThreadPoolExecutor(1) as side:
         out = jump_out and side.submit(near.jump, retraction, jump_out, land=False)

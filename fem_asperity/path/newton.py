@@ -2,16 +2,16 @@
 scalar constraint.
 
 Each path holds one thing: the arc length along the curve (`continuation.correct`, δ̄o the
-border's unknown), the crack tip at a radius with δ̄o free (`tip.held`), or the tip at a radius
+border's unknown), the crack tip at a radius with δ̄o free (`held_tip.held`), or the tip at a radius
 with δ̄o fixed, the pin's load the unknown (`landing.pinned`). Each Newton step solves
 
     [[J, c], [uᵀ, β]] [dw; z] = [r_w; r_c],   J = ∂g/∂w (symmetric),
 
 the constraint's column c, row u and corner β around the same tangent J. `BorderedSystem`
-factorises J (Cholesky, single precision first), eliminates the border, falls back as its
-caller says (J in double precision; J + ρ u uᵀ, the pin's penalty; LU of the whole matrix) and
-refines each solve against the exact double-precision product. The narrative of these choices
-is in docs/methods.md ("The bordered Newton system").
+factorises J (Cholesky, in the order its caller gives: J in single or double precision, or
+J + ρ u uᵀ, the pin's penalty), eliminates the border, falls back to LU of the whole matrix
+where its caller allows it, and refines each solve against the exact double-precision product
+as often as its caller asks. docs/methods.md §3 ("The bordered Newton system") says why.
 """
 
 from copy import copy
@@ -28,7 +28,7 @@ from scipy.linalg import (
 )
 
 #: The edge block: this share of the surface nodes, centred on the crack tip, is refactorised
-#: when a linearisation moves (`BorderedSystem.moved_to`); benchmarks/large_mu.py measures it.
+#: when a system moves (`BorderedSystem.relocated`). Not pinned by a test; docs/methods.md §3.
 EDGE_SHARE = 0.125
 #: A moved system refines each solve up to MOVED_REFINEMENTS times, until a correction is
 #: ≤ ACCEPT of the step; test_surface_solver.py::test_moved_linearisation_solves_like_a_fresh_one.
@@ -155,16 +155,18 @@ class BorderedSystem:
         eliminated. PINNED factorises J + ρ u uᵀ (ρ: `pin_penalty` on u's nonzero nodes) and
         adds ρ u times the constraint's row to the first rows, [[J + ρ u uᵀ, c + ρ β u],
         [uᵀ, β]]: the same solutions.
-    lu: where none succeeds or the border is degenerate, LU of the whole matrix in single
-        precision; without it the system has no solution (`failed`).
+    lu: where none succeeds or the border is degenerate, LU of the whole matrix in this
+        precision (np.float32 or np.float64); None: the system then has no solution (`failed`).
     refinements: each solve is refined that many times against the exact double-precision
         product (`converged` says whether the last correction was ≤ ACCEPT of the step).
-    `stable` says whether J is positive definite, as far as the factorisations tried tell.
+    stability: whether `stable` is asked for; it says whether J is positive definite (False
+        where J itself was not factorised: try DOUBLE to be sure).
     """
 
     def __init__(self, surface, slope, column, border, *, block=None,
-                 factorisations=(SINGLE, DOUBLE), lu=True, refinements=1):
+                 factorisations=(SINGLE, DOUBLE), lu=np.float32, refinements=1, stability=True):
         self.n, self.refinements, self.moved, self.converged = column.size, refinements, False, True
+        self._stability = stability
         self._set_products(surface, slope, column, border)
         self._penalty, self._cho, self._lu = 0.0, None, None
         for kind in factorisations:
@@ -175,13 +177,13 @@ class BorderedSystem:
                         else None if self._cho.single else True)
         if self._cho is not None and self._eliminate():
             return
-        if self._cho is not None:  # a degenerate border: decide the flag before LU replaces it
+        if self._cho is not None and stability:  # a degenerate border: the flag before LU
             self._stable = self.stable
         self._cho = None
-        if lu:
+        if lu is not None:
             n = self.n
-            matrix = np.empty((n + 1, n + 1), dtype=np.float32, order="F")  # LU in place
-            matrix[:n, :n], matrix[:n, n], matrix[n] = self._tangent(), column, border
+            matrix = np.empty((n + 1, n + 1), dtype=lu, order="F")  # LU in place
+            matrix[:n, :n], matrix[:n, n], matrix[n] = self._tangent(lu), column, border
             self._lu = lu_factor(matrix, check_finite=False, overwrite_a=True)
 
     @property
@@ -198,7 +200,8 @@ class BorderedSystem:
         return self._surface.tangent_matrix(self._slope, precision)
 
     def _matrix(self, kind):
-        """J (SINGLE, DOUBLE) or J + ρ u uᵀ (PINNED, setting ρ) to factorise."""
+        """J (SINGLE, DOUBLE) or J + ρ u uᵀ (PINNED) to factorise, ρ set for the elimination."""
+        self._penalty = 0.0
         if kind != PINNED:
             return self._tangent(np.float64 if kind == DOUBLE else np.float32)
         u = self._border[:-1]
@@ -224,8 +227,8 @@ class BorderedSystem:
             # cast gives inf, which the Newton loops take for the failed step it is (and retry
             # shorter), so the overflow is not worth a warning on the user's terminal.
             with np.errstate(over="ignore"):
-                single = rhs.astype(np.float32)
-            return lu_solve(self._lu, single, check_finite=False).astype(float)
+                cast = rhs.astype(self._lu[0].dtype)
+            return lu_solve(self._lu, cast, check_finite=False).astype(float)
         u = self._border[:-1]
         rhs_w = rhs[:-1] if not self._penalty else rhs[:-1] + (self._penalty * rhs[-1]) * u
         a = self._cho.solve(rhs_w)
@@ -257,6 +260,8 @@ class BorderedSystem:
         inverse iteration finds (`_softest`), if it is clearly negative (then so is the softest
         eigenvalue) or clearly positive (≥ SURE_SIGN of the scaled matrix's ‖·‖∞,
         `LJSurface.scaled_tangent_norm`); else by a double-precision factorisation."""
+        if not self._stability:
+            raise ValueError("this system was built without a stability flag (stability=False)")
         if self._stable is None:
             diagonal = self._surface.tangent_diagonal(self._slope)
             if np.min(diagonal) <= 0.0:
@@ -290,14 +295,14 @@ class BorderedSystem:
         crack tip at `tip`): an edge-block one with its edge refactorised there (the bulk kept),
         an LU one as it is. Solves are refined against that state's exact matrix (up to
         MOVED_REFINEMENTS times, until a correction is ≤ ACCEPT of the step). None where the
-        tip left the middle half of the edge block, J has no edge block, or the refactorised
-        edge is not positive definite: then factorise afresh."""
+        tip left the middle half of the edge block, J has no edge block or was penalised, or the
+        refactorised edge is not positive definite: then factorise afresh."""
         moved = copy(self)
         moved._set_products(surface, slope, column, border)
         moved.refinements, moved.moved = MOVED_REFINEMENTS, True
         if self._cho is None:
             return moved
-        if self._cho.block is None:
+        if self._cho.block is None or self._penalty:
             return None
         moved._stable = None
         first, last = self._cho.block
