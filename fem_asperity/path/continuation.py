@@ -25,16 +25,13 @@ ARMIJO, MAX_HALVINGS = 1e-4, 20
 #: An iteration that keeps more than SLOW_PROGRESS of the merit counts as slow (`patience`).
 #: Not pinned by a test.
 SLOW_PROGRESS = 0.9
-#: Step-length control of `follow`, in the manner of scipy's solve_ivp: the first step FIRST_STEP;
-#: after an accepted point the step is scaled by SAFETY/ratio (ratio: the largest of the
-#: changes of P̄, ā_c and the turn relative to their limits, at least MIN_RATIO), at most
-#: MAX_FACTOR; a rejected point scales it by SAFETY/ratio, at least MIN_FACTOR. A step Newton
-#: failed on is halved (NEWTON_FAILURE_FACTOR) and caps the next ones at FAILED_CAP of itself,
-#: the cap relaxing by CAP_RELAXATION per accepted point (so a step that just failed is not
-#: tried again at once). A point the grid does not admit counts as INADMISSIBLE_RATIO (shorter).
-#: None of these is pinned by a test.
+#: Step control of `follow` as solve_ivp's: the first step, the safety factor, the floor of the
+#: change ratio, the growth and shrink limits (docs/methods.md §3). Not pinned by a test.
 FIRST_STEP, SAFETY, MIN_RATIO, MAX_FACTOR, MIN_FACTOR = 0.1, 0.8, 1e-3, 2.0, 0.2
+#: A step Newton failed on is halved and caps the next ones at FAILED_CAP of itself, the cap
+#: relaxing by CAP_RELAXATION per accepted point. Not pinned by a test.
 NEWTON_FAILURE_FACTOR, FAILED_CAP, CAP_RELAXATION = 0.5, 0.7, 1.5
+#: The change ratio of a point its grid does not admit: retried shorter. Not pinned by a test.
 INADMISSIBLE_RATIO = 2.0
 #: Heading in (x̄o, δ̄o, P̄) of an approach from far away (gap and δ̄o decreasing).
 APPROACH = np.array([-1.0, -1.0, 0.0])

@@ -163,12 +163,8 @@ def _most_tensile(path):
     return float(path.p[i]), float(path.delta[i]), float(path.a_c[i])
 
 
-#: A jump that lands with the centre gap within this of ε (x̄o ≤ 1 + JUMP_CONTACT) forms the
-#: contact: the LJ traction there is below 8 % of its tensile peak, the surfaces at their
-#: equilibrium spacing. Above μ ≈ 20 the centre lands just above 1 and its traction turns
-#: compressive only deep in the indentation (μ = 50, BEM draft: x̄o = 1.00059 after the jump,
-#: 1 at δ̄o = −84.8), a δ̄o that an error of 1e-6 in x̄o would move by 0.14: no number to
-#: report. test_curve.py::test_a_jump_that_lands_at_the_equilibrium_spacing_forms_the_contact.
+#: A jump whose centre gap lands within this of ε forms the contact (the traction there < 8 % of
+#: its peak). docs/methods.md §12; test_curve.py::test_a_jump_that_lands_at_the_equilibrium_*.
 JUMP_CONTACT = 0.01
 
 

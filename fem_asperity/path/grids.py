@@ -40,41 +40,20 @@ from .curve import GridMoves
 from .landing import land, peel
 from .surface import TIP_GAP, LJSurface, SurfaceShape
 
-#: A landing on grids that follow the edge runs in stages (of LANDING_STAGE descent iterations,
-#: or a peel on one grid), moving to the grid of the iterate's edges when they leave its band, at
-#: most MAX_STAGES of them: a peel crosses up to (AHEAD + FIT) of a band per grid, and the
-#: jump-out of BEM `draft` at μ = 50 peels a tip of a few √(Rε) at a band of 0.0135, a few
-#: hundred grids. Not pinned by a test.
+#: A landing on moving grids: descent stages of LANDING_STAGE iterations (or a peel), at most
+#: MAX_STAGES grids (a jump-out at μ = 50 peels across a few hundred). docs/methods.md §12.
 LANDING_STAGE, MAX_STAGES = 100, 2000
-#: A grid fits a state (resolves it as one built for it would: a branch stays on it, a landing
-#: ends on it) while the state's edges lie within FIT × band of the grid's centre; the fine band
-#: reaches a band either side. A grid built while the edges move is centred AHEAD × band beyond
-#: them in the direction they are moving (`EdgeGrids._ahead`), so they cross (AHEAD + FIT) of a
-#: band before leaving it, not FIT: on a branch the edges move one way, and fewer grids are
-#: built. AHEAD < FIT, or a grid would not fit the state it was built for. An edge that moved
-#: less than STILL × band since the last grid counts as still (round-off must not move its
-#: band). test_tracking.py::test_grids_ahead_of_the_edges_build_fewer_grids_for_the_same_curve.
-#: The boundary integral's (each of its grids takes ~0.1 s to build): with 0.75 and 0.65 (1.4
-#: bands per grid) instead of 0.5 and 0.4 (0.9), BEM `default` at μ = 10 built 33 grids instead
-#: of 46, and the largest force change of a move rose from 1.9e-8 to 4.2e-8 (`draft`, μ = 20:
-#: 123 grids instead of 175, 8.5e-7 instead of 1.9e-7; the force estimates add it), that of ā_c
-#: fell from 8.8e-4 to 2.4e-4 (3.7e-4 to 2.5e-4).
+#: A grid fits a state while its edges lie within FIT bands of its centre; a new one is centred
+#: AHEAD bands beyond moving edges; STILL: an edge that moved less is still. §12; test_tracking.py.
 FIT, AHEAD, STILL = 0.75, 0.65, 0.05
-#: The FE's (a grid restricts its surface in ~10 ms, so fewer grids save little): 0.5 and 0.4.
-#: With the boundary integral's, the FE's δ̄o at the jump-out (μ = 5, `draft`) traced near the
-#: event on a grid centred on it lay 2e-5 from the whole finer solve's, as far as the curve's;
+#: The FE's FIT and AHEAD (its grids are cheap, so fewer save little). docs/methods.md §12;
 #: test_near_events.py::test_events_near_each_event_are_the_whole_finer_solves.
 FE_FIT, FE_AHEAD = 0.5, 0.4
 _STIFFEST_SLOPE = float(scaled_traction_slope(TIP_GAP))
 
 
-#: Jumps land from a guess (`EdgeGrids.landing_guess`) from μ = GUESS_MU on, where JKR's
-#: contact is near the jump-in's and a jump out leaves no contact (5: where the FE's grids
-#: follow the edge by default; at μ = 8, BEM `draft`, the landings are the descent's,
-#: test_tracking.py::test_jumps_land_from_the_guesses_where_the_descent_lands). JKR's guess has
-#: the gap GUESS_GAP (ε) below 1 inside its compressive radius and above 1 out to its radius,
-#: so that its ā_c (where the gap passes 1) is that radius: at exactly 1 it was rounding's, and
-#: the first grid's band lay elsewhere. Not pinned by a test.
+#: Jumps land from JKR's guess (`EdgeGrids.landing_guess`) from μ = GUESS_MU, its gap GUESS_GAP
+#: (ε) off 1 so that its ā_c is JKR's radius. docs/methods.md §12; test_tracking.py.
 GUESS_MU, GUESS_GAP = 5.0, 1e-3
 
 

@@ -23,15 +23,11 @@ from .continuation import ARMIJO
 from .newton import PINNED, BorderedSystem, Cholesky, converged
 from .surface import TIP_GAP, gap_keeping_step
 
-#: Levenberg shift of an indefinite tangent: raised SHIFT_RAISE times until Cholesky succeeds,
-#: from at least SHIFT_FLOOR (relative to the elastic diagonal); the next iteration starts from
-#: SHIFT_AFTER_SHORT × the last shift after a shortened step, SHIFT_AFTER_FULL × after a full one
-#: (the trust-region rule of thumb: shrink the shift where the model was trusted). Not pinned by
-#: a test.
+#: Levenberg shift of an indefinite tangent (of the elastic diagonal): raised by SHIFT_RAISE from
+#: SHIFT_FLOOR until Cholesky succeeds, then scaled per step as a trust region's. Not pinned.
 SHIFT_RAISE, SHIFT_FLOOR, SHIFT_AFTER_SHORT, SHIFT_AFTER_FULL = 4.0, 1e-6, 2.0, 0.25
-#: Inverse iterations for the most negative curvature direction, and the largest gap change of
-#: that step (ε): a fraction of the LJ well's width, so the line search starts near the well.
-#: Not pinned by a test.
+#: Inverse iterations for the most negative curvature, and that step's largest gap change (ε, a
+#: fraction of the LJ well's width). Not pinned by a test.
 CURVATURE_ITERATIONS, CURVATURE_STEP = 4, 0.5
 #: Iterations of a landing beyond one per surface node (a snapping contact edge moves by about
 #: one or two nodes per iteration): BASE_ITERATIONS + nodes. Not pinned by a test.
@@ -39,10 +35,8 @@ BASE_ITERATIONS = 300
 #: Halvings of the energy line search (2^-30 of a step is below rounding of the energy). Not
 #: pinned by a test.
 MAX_HALVINGS = 30
-#: `pinned` converges to PEEL_TOL (residual relative, as `land`'s tol; the peel's states are
-#: waypoints, the landing's descent converges at its own tol) in at most PEEL_NEWTON
-#: iterations. A peel step that fails is halved, down to PEEL_SMALLEST × the grid spacing.
-#: Not pinned by a test.
+#: The peel's waypoints: `pinned` to PEEL_TOL in PEEL_NEWTON iterations; failed steps halved down
+#: to PEEL_SMALLEST grid spacings (the landing's descent converges at its own tol). Not pinned.
 PEEL_TOL, PEEL_NEWTON, PEEL_SMALLEST = 1e-6, 10, 1.0 / 16.0
 
 def _shifted_factor(jac, weight, shift, floor, unshifted_first):

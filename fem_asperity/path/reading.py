@@ -11,20 +11,14 @@ from .continuation import Linearisation, correct
 from .curve import curve_from_columns, parabola_vertex
 
 COLUMNS = ("delta", "x", "p", "area", "a_c")
-#: Newton iterations allowed per point of `root_along`, 40: when its guess was the linear
-#: blend of the two bracketing states (now the fallback), which blurs a crack front that moved
-#: between them, each point at μ = 10 (BEM default, edge-following grids) needed 12, and with
-#: the continuation's 10 the pull-off was left a sample, 2.9e-6 off the extremum.
+#: Newton iterations per point of `root_along` (12 were needed at μ = 10 from a linear blend).
 #: test_near_events.py::test_the_pull_off_at_large_mu_is_the_extremum_not_a_sample.
 ROOT_NEWTON = 40
-#: A point of `root_along` farther from sample k than BRACKET_REACH times sample k + 1 is on
-#: another part of the curve (near a fold the constraint plane also holds far-away equilibria)
-#: and ends the search. Not pinned by a test.
+#: A `root_along` point farther from sample k than this times sample k + 1 is on another part of
+#: the curve and ends the search. Not pinned by a test.
 BRACKET_REACH = 2.0
-#: Intervals searched for an extremum of P̄, relative to where the stored tangents change sign:
-#: there, then one before and one after (`refine_force_extrema`). At μ = 7 (BEM fine, refined)
-#: the stored dP̄/ds at the sample nearest P̄off was −8.4e-5, recomputed +9.9e-5, and P̄off was
-#: left a sample 7e-7 off. test_near_events.py.
+#: Intervals searched for an extremum of P̄ about where the stored tangents change sign (their
+#: sign can be stale by ~1e-4). docs/methods.md §12; test_near_events.py.
 ADJACENT = (0, -1, 1)
 
 
