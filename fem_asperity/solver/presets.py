@@ -19,117 +19,69 @@ from ..solids.bem import BoussinesqSurface, radial_grid
 from ..solids.fe import HalfSpace, Solid
 from ..solids.mesh import graded_mesh
 
-#: Surface element size relative to the `default` preset (below the ripple cap, which can make
-#: presets alike at large μ: `discretisation`), and the continuation's turn limit; the three
+#: Surface element size relative to `default` (below the ripple cap) and the turn limit; they
 #: converge in turn: test_fem_curve.py::test_pull_off_converges_under_refinement (slow).
 PRESETS = {
     "draft": (2.0, 0.2),
     "default": (1.0, 0.1),
     "fine": (0.5, 0.05),
 }
-#: FE surface element length of `default`: min(H_MAX, H_COHESIVE · μ^(−3/2)), in √(Rε) (surface
-#: edges come out between ⅔ of it and all of it, `solids.mesh.graded_mesh`).
-#: H_MAX = 1/16: at 1/10 the FE separations at μ = 1 moved by more than the error estimate (then
-#: from a coarser solve) said; test_bem_curve.py::test_bem_agrees_with_fem_within_the_error_
-#: estimates.
-#: H_COHESIVE = 0.2: at 0.25 the P2 surface ripples at μ = 5. Not pinned by a test.
+#: FE surface element of `default`: min(H_MAX, H_COHESIVE μ^(−3/2)) √(Rε). docs/methods.md §12;
+#: test_bem_curve.py::test_bem_agrees_with_fem_within_the_error_estimates.
 H_MAX, H_COHESIVE = 0.0625, 0.2
-#: BEM element length of `default` at large μ, H_COHESIVE_BEM · μ^(−3/2) with 0.125: no ripple
-#: at μ = 5. Not pinned by a test.
+#: BEM element of `default` at large μ: H_COHESIVE_BEM μ^(−3/2) (no ripple at μ = 5). Not pinned.
 H_COHESIVE_BEM = 0.125
-#: Largest boundary-integral element at `default`, 0.025: linear elements reproduce the centre
-#: deflection, so δ̄o*, less well than quadratic ones (μ = 1: 0.05 puts δ̄o* 6e-3 off, 0.025
-#: 1.4e-3). Not pinned by a test.
+#: Largest boundary-integral element at `default`: linear elements place δ̄o* less well than
+#: quadratic ones (docs/methods.md §12). Not pinned by a test.
 H_MAX_BEM = 0.025
-#: Truncation radius and depth of the FE half-space, 1e3 √(Rε) (at least 100 r_fine): the solid
-#: outside is restored (`solids.fe.HalfSpace`), so the events at L = 1e3 and 1e5 agree to 1e-7
-#: at μ = 3 and 5; test_fem_elastic.py::test_truncation_size_no_longer_matters.
+#: Truncation radius and depth of the FE half-space (√(Rε); the solid outside is restored).
+#: test_fem_elastic.py::test_truncation_size_no_longer_matters.
 DOMAIN_SIZE = 1e3
-#: Last node of the boundary-integral traction grid, 100 √(Rε): the LJ tail beyond it carries a
-#: force of about (16/3) r⁻⁴ ≈ 5e-8 (the solid itself is not truncated). Not pinned by a test.
+#: Last node of the BEM traction grid (√(Rε)): the LJ tail beyond carries ≈ (16/3) r⁻⁴ ≈ 5e-8.
+#: Not pinned by a test (the estimate adds it, `solve.traction_tail`).
 TRACTION_RADIUS = 100.0
-#: FE bulk grading (element size growth per unit distance from the surface strip), 0.2: at 0.3
-#: the error estimate (then from a coarser solve) missed the force after the jump-in at μ = 3,
-#: at 0.2 it bounded every event; test_bem_curve.py::test_bem_agrees_with_fem_within_the_error_
-#: estimates (μ = 3 is slow).
+#: FE bulk grading (size growth per unit distance from the surface strip). docs/methods.md §12;
+#: test_bem_curve.py::test_bem_agrees_with_fem_within_the_error_estimates (μ = 3, slow).
 FE_GRADING = 0.2
-#: From MU_TRACKING[method] on the surface problem runs on grids that follow the contact edge
-#: (`path.grids`), where a uniform grid fine enough for the edge (n ∝ μ² nodes) outgrows the
-#: grids' overhead: fine (h_surface; on the FE every surface node) within BAND_COHESIVE μ^(−3/2)
-#: of the contact radius and of the crack tip, at most H_INSIDE inside the contact. BEM from 4,
-#: where the uniform grid stops being the cheaper at `draft` and `default` (below, the grids'
-#: overhead is the larger; above, the uniform grid's cost grows steeply: from the former 6 it
-#: made a cost spike just below the threshold); they give the uniform grid's events at μ = 4
-#: (`draft`) and 5 (`default`), test_tracking.py::test_tracked_grids_give_the_uniform_grids_
-#: events and ::test_tracked_grids_from_the_bem_threshold_give_the_uniform_grids_events.
-#: FE from 5 (its surface restricted to the grids, `solids.fe.RestrictedSurface`): `default`
-#: at μ = 4.5, 5, 5.5 and 7 moved a
-#: state to a new grid with |ΔP̄| ≤ 8.2e-6, and at μ = 5 its events agree with the whole
-#: surface's within their error estimates, test_tracking.py::
-#: test_fe_on_grids_that_follow_the_edge_gives_the_whole_surfaces_events; at μ = 4 a move
-#: changed P̄ by 4.1e-4 and at μ = 3 a landing found no state on a grid that fits it (those
-#: other μ measured with the pre-contact grid at H_MAX_BEM, before it held every node).
+#: μ from which grids follow the contact edge, per method; their fine band (μ^(−3/2) √(Rε)) and
+#: inside spacing. docs/methods.md §12; test_tracking.py::test_tracked_grids_give_*.
 MU_TRACKING = {"bem": 4.0, "fem": 5.0}
 BAND_COHESIVE, H_INSIDE = 8.0, 0.1
-#: Most elements of the ripple-free size in a band, 128 (what `default`'s band holds below μ ≈ 18):
-#: beyond, each Newton matrix grows (as n³) while the steps do not. Measured at μ = 50 in f7ac055;
-#: benchmarks/results/large_mu.md times the large μ. Not pinned by a test.
+#: Most elements of the ripple-free size in a band: beyond, each Newton matrix grows as n³ while
+#: the steps do not (benchmarks/results/large_mu.md). Not pinned by a test.
 BAND_ELEMENTS = 128
-#: Largest change of ā_c in one step on grids that follow the edge, in bands: 1 (a step that
-#: leaves its grid's band is retried shorter anyway; 0.5 gave the same P̄off at more points,
-#: f7ac055). Not pinned by a test.
+#: Largest change of ā_c per step on grids that follow the edge, in bands (0.5 gave the same
+#: P̄off at more points). Not pinned by a test.
 EDGE_STEP = 1.0
-#: Growth of boundary-integral elements per element beyond the fine zone, 0.1. Not pinned by a
-#: test.
+#: Growth of boundary-integral elements per element beyond the fine zone. Not pinned by a test.
 BEM_GROWTH = 0.1
-#: Element length at the edge of grids that follow it, `default`: H_COHESIVE_TRACKING μ^(−3/2)
-#: with 0.0625, half the uniform grid's: the crack tip is a front a few elements wide, and on
-#: elements twice as long it moves in jerks (μ = 10: ripple folds). Not pinned by a test.
+#: Element at the edge of grids that follow it, × μ^(−3/2) √(Rε): half the uniform grid's, or the
+#: crack tip moves in jerks (ripple at μ = 10). Not pinned by a test.
 H_COHESIVE_TRACKING = 0.0625
 #: Smallest radius (√(Rε)) of the finely resolved surface strip: the sphere's gap there is at least
 #: 8 ε, where the LJ tension is 0.5% of its peak. Not pinned by a test.
 R_FINE_MIN = 4.0
-#: Largest surface element on which a curve has no ripple folds, RIPPLE_FREE[grid] · μ^(−2) √(Rε),
-#: per grid ('fem', 'bem' uniform, 'edge' following): the largest size found free of ripple at
-#: every μ measured (`python benchmarks/ripple.py` → results/ripple.md: the onset of h μ² lies
-#: between 0.28 and 0.30 for the uniform BEM at μ = 3.5, 0.33 and 0.375 for the edge-following
-#: grids at μ = 9, 0.45 and 0.56 for the FE at μ = 5, on its whole surface); the FE on grids
-#: that follow the edge keeps its elements ('fem'), their bands holding every surface node;
-#: test_bem_curve.py::test_presets_do_not_ripple.
+#: Largest surface element free of ripple folds, × μ^(−2) √(Rε), per grid: benchmarks/results/
+#: ripple.md (`python benchmarks/ripple.py`); test_bem_curve.py::test_presets_do_not_ripple.
 RIPPLE_FREE = {"fem": 0.45, "bem": 0.28, "edge": 0.33}
-#: Presets stay this factor below the ripple-free size: it was measured at a few μ only. Not
-#: pinned by a test.
+#: Presets stay this factor below the ripple-free size (measured at a few μ only). Not pinned.
 RIPPLE_MARGIN = 1.25
-#: Most surface elements of an FE curve, 2500: the dense condensed surface's factorisations grow
-#: as the cube of the count, and 2500 costs tens of minutes (8bcd715 measured it).
-#: test_fem_curve.py::test_a_layer_the_fe_cannot_resolve_is_refused_up_front.
+#: Most surface elements of an FE curve: its dense surface factorisations grow as n³ (tens of
+#: minutes here). test_fem_curve.py::test_a_layer_the_fe_cannot_resolve_is_refused_up_front.
 FE_MAX_SURFACE_ELEMENTS = 2500
-#: Most elements of an FE mesh, 300k, checked after meshing, before assembly: a mesh of 2.2M
-#: ran out of memory (67d85c7). test_fem_curve.py::test_a_layer_the_fe_cannot_resolve_is_
-#: refused_up_front.
+#: Most elements of an FE mesh, checked before assembly (2.2M ran out of memory).
+#: test_fem_curve.py::test_a_layer_the_fe_cannot_resolve_is_refused_up_front.
 FE_MAX_ELEMENTS = 300_000
-#: Most nodes of a uniform boundary-integral grid: its dense operators take n² memory (128 MB
-#: per matrix at 4000) and each factorisation n³ work; the edge-following grids stay below
-#: 1000. A soft layer (M = 0.01) at μ = 1 asked for 35000 and ran out of memory (37 GB).
+#: Most nodes of a uniform boundary-integral grid (dense n² operators, n³ factorisations).
 #: test_layered.py::test_extreme_layers_converge_or_stop_with_a_clear_message.
 BEM_MAX_NODES = 4000
 #: Methods: finite elements ('fem') or the boundary-integral solver ('bem').
 METHODS = ("fem", "bem")
-#: How a curve's error estimate is made (`solve_curve`'s estimate_by): 'finer', its events
-#: solved again on its finer discretisation; 'bem', the FE against the boundary integral's
-#: curve at the same preset with that curve's own ('finer') estimate; 'auto', 'bem' for the FE
-#: of a homogeneous half-space, else 'finer'. The FE's finer half-space cost 2.5-5.3 times its
-#: curve (its condensation; docs/accuracy-study.md at 9f5dc20, benchmarks/results/
-#: large_mu-tip-after.md at b04172e), the boundary integral's curve with its estimate about as
-#: much as the FE's curve, alongside it on the second core (large_mu-bem-partner-after.md at
-#: 1a7ef82; `git show 1a7ef82:benchmarks/results/large_mu-bem-partner-after.md`).
+#: How a curve's error estimate is made (`solve_curve`'s estimate_by; 'auto': 'bem' for the FE of
+#: a homogeneous half-space, else 'finer'). docs/methods.md §12 has their costs.
 ESTIMATE_BY = ("auto", "finer", "bem")
-#: The error estimate's finer solve grades the bulk (FE) or tail (BEM) twice as gently, so the
-#: estimate also sees the bulk mesh, which dominates the FE's δ̄oc error at small μ (μ = 0.5: 6e-7
-#: off at grading 0.2, 2e-8 at 0.067). With 1 (the grading kept) the FE's estimate of δ̄ at the
-#: jump-in at μ = 1, 4.2e-6, missed its error, 7.4e-6; with 1.5 that of δ̄oc at μ = 0.5, 9e-8,
-#: missed 6e-7. It costs the FE's second solve 2.6-2.8 times the DOFs at μ = 0.5 and 3;
-#: test_bem_curve.py::test_bem_agrees_with_fem_within_the_error_estimates.
+#: The estimate's finer solve grades the bulk (FE) or tail (BEM) this much more gently, so it
+#: sees the bulk mesh. docs/methods.md §12; test_bem_curve.py::test_bem_agrees_with_fem_*.
 ESTIMATE_GRADING = 2.0
 
 
@@ -315,14 +267,8 @@ def jkr_radius(load, mu):
     return ((1.5 * np.pi) * mu**1.5 * (load + 1.5 + np.sqrt(3.0 * load + 2.25))) ** (1.0 / 3.0)
 
 
-#: The cost of one curve relative to one at small μ: about flat up to COST_KNEE, then growing
-#: as μ^COST_POWER[method] (the cohesive zone narrows; the BEM's grids follow it from
-#: `MU_TRACKING`, the FE's surface grows faster). Read off the wall times of the stored BEM and
-#: FE sweeps over μ = 0.01-50 (the commit message has them). A sweep (`studies.sweep`) weighs
-#: its progress by it, so that its time left is not extrapolated from the cheap curves, and
-#: hands out its curves costliest first, so that no worker is left alone with a large μ at the
-#: end. test_sweep.py::test_the_time_left_weighted_by_cost_is_nearer_than_by_count checks it
-#: against measured wall times.
+#: A curve's cost relative to small μ: flat to COST_KNEE, then ∝ μ^COST_POWER (a sweep weighs
+#: its progress and order by it). test_sweep.py::test_the_time_left_weighted_by_cost_*.
 COST_KNEE, COST_POWER = 2.0, {"bem": 1.5, "fem": 2.5}
 
 

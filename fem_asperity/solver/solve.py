@@ -32,23 +32,16 @@ from ..solids.fe import Solid
 from .presets import ESTIMATE_BY, MU_TRACKING, discretisation, sizing_mu
 from .result import PHYSICAL_FOLDS, CurveResult, Model, worst_status
 
-#: BLAS threads while a curve is set up and traced, 1: its dense factorisations (n ≈ 100-3000)
-#: ran slower with two threads than with one on a two-core machine, and the second core is better
-#: spent on the error estimate's second curve. Not pinned by a test.
+#: BLAS threads while a curve is traced: its dense factorisations ran slower with two on two
+#: cores, and the second core serves the error estimate. Not pinned by a test.
 PATH_BLAS_THREADS = 1
 
-#: Upper end of the measured onset of jump-in, 0.6972 ± 0.001 (`studies.onset.jump_in_onset`,
-#: FE and BEM; test_bem_curve's fold-margin test pins 0.69-0.70): above it a homogeneous
-#: Derjaguin curve must jump in. Just above, the fold is shallow and a grid can miss it (BEM
-#: `default` at μ = 0.7); such a curve, like one that ripples, is solved again on grids refined
-#: up to REFINEMENTS times (test_bem_curve).
+#: Above the measured jump-in onset's upper end a Derjaguin curve must jump in; one that misses
+#: it (or ripples) is refined up to REFINEMENTS times. test_bem_curve.py (fold margin, 0.7).
 MU_ONSET_HI, REFINEMENTS = 0.6982, 2
 
-#: Tabor parameters a curve is solved for, both ends included: from the rigid limit (μ = 1e-3
-#: solves with both methods; 1e-300 overflowed) to the largest μ whose curve finishes at
-#: `draft` within minutes on two cores (benchmarks/results/extremes.md; the cohesive zone
-#: narrows like μ^-1.5 and its grids grow, so μ = 100 costs far more); above it JKR answers
-#: (TOO_STIFF). test_cli's bad-input test and test_bem_curve pin both ends.
+#: Tabor parameters solved for: the rigid limit to the largest μ that finishes at `draft` in
+#: minutes (benchmarks/results/extremes.md). test_cli's bad-input test and test_bem_curve.
 MU_RANGE = (1e-3, 50.0)
 #: Why a μ above MU_RANGE is refused, and what answers there.
 TOO_STIFF = ("above it the cohesive zone is too narrow for a solve to finish within minutes; "
@@ -56,63 +49,37 @@ TOO_STIFF = ("above it the cohesive zone is too narrow for a solve to finish wit
              "solved one at mu = 50): python -m fem_asperity laws, "
              "fem_asperity.closed_forms.reference")
 
-#: Springs taken (2πRΔγ/ε), the softest included. Stiffer than 1e12, the control is
-#: displacement control to round-off (z̄ − δ̄o = −P̄/k̄ below 1e-12 ε). The approach starts
-#: outside the spring's jump-in, SPRING_FOLD_MARGIN (8/(3k̄))^(1/3) out, so its cost grows like
-#: k̄^(-1/3) (SOFT_SPRING); 1e-9 is far softer than any cantilever (1e-6 N/m on a 1 µm sphere
-#: with Δγ = 0.05 J/m², ε = 0.3 nm; benchmarks/extremes.py times it). test_cli pins the end.
+#: Springs taken (2πRΔγ/ε): stiffer is displacement control to round-off; softer than any
+#: cantilever costs more than a curve (benchmarks/extremes.py). test_cli pins the ends.
 SPRING_RANGE = (1e-9, 1e12)
 #: Why a softer spring is refused.
 SOFT_SPRING = ("the approach starts outside the spring's jump-in, twice (8/(3k))^(1/3) eps "
                "out, and a spring softer than any cantilever would cost more points than a "
                "curve takes")
-#: The approach under a spring starts this many times farther out than the rigid sphere's
-#: jump-in under it, (8/(3k̄))^(1/3): the solid's own pull moves that fold out, by 1.5 % at
-#: μ = 6 (k̄ = 1e-3, BEM draft). test_load_line.py::test_a_soft_spring_lands_beyond_the_start.
+#: The approach under a spring starts this many times beyond the rigid sphere's jump-in under
+#: it. test_load_line.py::test_a_soft_spring_lands_beyond_the_start.
 SPRING_FOLD_MARGIN = 2.0
-#: Largest μ whose whole curve (the unstable branches, or a spring's load-line control) is
-#: traced: on one uniform grid, which must resolve the cohesive zone everywhere, its cost
-#: climbs steeply with μ (benchmarks/results/extremes.md times μ = 5 and 6; μ = 7 costs far
-#: more). test_cli's bad-input test pins it.
+#: Largest μ whose whole curve (unstable branches, or a spring) is traced on one uniform grid
+#: (benchmarks/results/extremes.md). test_cli's bad-input test pins it.
 WHOLE_CURVE_MU_MAX = 6.0
 #: Progress shown until a solve and its error estimate have both ended.
 ALMOST_DONE = 0.99
-#: Share of the progress bar given to the curve where its estimate is traced after it, near
-#: each event (`_estimated_near_events`; the rest moves as the events are found): that
-#: estimate costs up to about as much as the curve (docs/accuracy-study.md), and a bar that
-#: waited at 99 % for it looked stalled. test_bem_curve.py::test_progress_rises_to_one_at_
-#: the_end_only.
+#: The progress bar's share for the curve where its estimate is traced after it (it costs up to
+#: as much). test_bem_curve.py::test_progress_rises_to_one_at_the_end_only.
 CURVE_SHARE = 0.6
-#: The estimated forces: on grids that follow the edge their estimate adds the curve's
-#: `regrid_change`, the force change of a state moved between grids, which the finer partner
-#: (its grids placed alike) does not see: at μ = 8 (BEM draft) P̄off moved by 1.3e-8 with the
-#: grids placed otherwise, against an estimate of 4e-9 without it;
-#: test_tracking.py::test_grids_ahead_of_the_edges_build_fewer_grids_for_the_same_curve.
+#: The estimated forces: on moving grids their estimate adds `regrid_change` (docs/methods.md
+#: §12). test_tracking.py::test_grids_ahead_of_the_edges_build_fewer_grids_for_the_same_curve.
 FORCES = ("p_max", "p_jump_after", "p_off")
-#: Likewise the estimated contact radius adds `regrid_radius_change`: at μ = 10 (BEM `default`)
-#: ā_c at P̄max moved by up to 2e-4 with the grids placed otherwise, against an estimate of
-#: 2.8e-5 without it (a move changed ā_c by up to 9e-4, median 5e-5);
+#: The estimated contact radius adds `regrid_radius_change` likewise (§12).
 #: test_tracking.py::test_grids_ahead_of_the_edges_build_fewer_grids_for_the_same_curve.
 RADII = ("a_c",)
-#: Likewise the estimated jump-out adds `regrid_fold_change`, how far its fold moved when found
-#: again on grids placed otherwise (`tip._record_fold_elsewhere`): at μ = 8 (BEM `draft`) δ̄o
-#: at the jump-out moved by 4.5e-7 between two placements, against an estimate of 4.1e-7
-#: without it. test_tip.py::test_the_jump_outs_fold_found_elsewhere_widens_its_estimate.
+#: The estimated jump-out adds `regrid_fold_change` likewise (§12).
+#: test_tip.py::test_the_jump_outs_fold_found_elsewhere_widens_its_estimate.
 FOLDS = ("delta_jump_out",)
-#: Each force estimated and the δ̄o it is read at. The surface carrying the LJ traction ends at
-#: a radius (`traction_radius`: the BEM's 100 √(Rε)); the traction beyond it, Bradley's force at
-#: the gap there (≈ (4/3)(r²/2)⁻² = 5.3e-8 at r = 100), is left out alike by the curve and by
-#: every finer partner (the same radius), so it is a floor under each force's estimate, added to
-#: it (`traction_tail`): BEM `default` at μ = 1e-3 and 0.01, P̄off moved by 4.4e-8 between
-#: r = 100 and 800 (by 1.5e-10 between 400 and 800), its estimate 1.1e-9 without the floor;
-#: test_bem_curve.py::test_the_estimate_of_a_force_sees_the_traction_beyond_the_grid.
+#: Each estimated force and its δ̄o: the LJ traction beyond the traction grid is a floor under
+#: its estimate (`traction_tail`, §12). test_bem_curve.py::test_the_estimate_of_a_force_sees_*.
 FORCE_AT = {"p_max": "delta_oc", "p_jump_after": "delta_jump_in", "p_off": "delta_off"}
-#: Against the boundary integral the FE's estimate is DIFFERENCE_FACTOR |FE − BEM| plus the
-#: BEM's own estimate, 2: the FE's error is at most |FE − BEM| + the BEM's error, and the BEM's
-#: estimate bounds that only where it exceeds the continuation's tolerance (about 1e-8); twice
-#: the difference keeps the bound where the BEM is far more accurate than the FE and its own
-#: estimate sits at that floor (as twice a finer partner's difference does, `_estimate`).
-#: python -m validation accuracy judges it (docs/accuracy-study.md);
+#: The FE's estimate against the BEM: DIFFERENCE_FACTOR |FE − BEM| + the BEM's own estimate (§12).
 #: test_bem_curve.py::test_the_fes_estimate_against_the_bem_bounds_its_error.
 DIFFERENCE_FACTOR = 2.0
 
