@@ -1,13 +1,14 @@
 """Single-asperity adhesive contact (Song & Komvopoulos): a rigid sphere on an elastic half-space
 through Lennard-Jones 9-3 surface springs.
 
-The closed forms load at once (numpy and scipy only): `Scales`, `tabor_parameter`,
-`effective_modulus`, the paper's laws `PAPER_LAWS` / `AsperityLaws`. The solvers load on first use
-(scikit-fem and the path machinery): `solve_curve`, `solve_to_tolerance`, `Solid`, `stored_curve`,
-`sweep`, `jump_in_onset`, `refit`, `write_all` (a curve's files). Subpackages, bottom up: `plumbing`
-(errors, checks, files, CLI helpers), `closed_forms`, `solids` (FE and boundary integral), `path`
-(the surface problem and path following), `solver` (presets, one curve, its files), `studies`
-(onset, store, sweeps, refit); see docs/ARCHITECTURE.md.
+The closed forms and the result types load at once (numpy and scipy only): `Scales`,
+`tabor_parameter`, `effective_modulus`, the paper's laws `PAPER_LAWS` / `AsperityLaws`, a solved
+path's `Curve` and its `Events` and `Jump`s. The solvers load on first use (scikit-fem and the path
+machinery): `solve_curve`, `solve_to_tolerance`, `Solid`, `stored_curve`, `sweep`,
+`jump_in_onset`, `refit`, `write_all` (a curve's files). Subpackages, bottom up: `plumbing`
+(errors, checks, files, CLI helpers), `closed_forms`, `curves` (what a solve yields), `solids`
+(FE and boundary integral), `path` (the surface problem and path following), `solver` (presets,
+one curve, its files), `studies` (onset, store, sweeps, refit); see docs/ARCHITECTURE.md.
 """
 
 from importlib import import_module
@@ -18,6 +19,8 @@ hold_while_loading()  # before numpy and scipy load: the slow part of a command'
 
 from .closed_forms.laws import PAPER_LAWS, AsperityLaws, LawEvents  # noqa: E402
 from .closed_forms.scales import Scales, effective_modulus, tabor_parameter  # noqa: E402
+from .curves.curve import Curve  # noqa: E402
+from .curves.events import Events, Jump  # noqa: E402
 from .plumbing.errors import ContinuationError, DerjaguinWarning, InputError  # noqa: E402
 from .plumbing.version import __version__ as __version__  # noqa: E402
 
@@ -44,8 +47,11 @@ def __getattr__(name):
 __all__ = [
     "AsperityLaws",
     "ContinuationError",
+    "Curve",
     "DerjaguinWarning",
+    "Events",
     "InputError",
+    "Jump",
     "LawEvents",
     "PAPER_LAWS",
     "Scales",

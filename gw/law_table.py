@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from fem_asperity.path.curve import Curve
+from fem_asperity.curves.curve import Curve
 from fem_asperity.plumbing.checks import finite_result, in_range
 from fem_asperity.plumbing.errors import InputError
 from fem_asperity.plumbing.files import write_atomic

@@ -79,7 +79,7 @@ class CorrectedLaw:
 
 
 class TabulatedLaw:
-    """P̄(δ̄o), Ā(δ̄o) read off an approach path (`fem_asperity.path.curve.Curve`) at Tabor
+    """P̄(δ̄o), Ā(δ̄o) read off an approach path (`fem_asperity.curves.curve.Curve`) at Tabor
     parameter mu.
 
     Each branch of the path (between jumps) is interpolated by PCHIP in δ̄o; a jump is a

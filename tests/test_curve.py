@@ -3,7 +3,8 @@
 import numpy as np
 import pytest
 
-from fem_asperity.path.curve import JUMP_CONTACT, Curve, _initial_contact, parabola_vertex
+from fem_asperity.curves.curve import Curve
+from fem_asperity.curves.events import JUMP_CONTACT, _initial_contact, parabola_vertex
 
 
 def test_parabola_vertex_of_a_parabola_is_exact():

@@ -11,7 +11,7 @@ from scipy.integrate import quad
 from fem_asperity import InputError
 from fem_asperity.closed_forms.laws import PAPER_LAWS
 from fem_asperity.closed_forms.lj import bradley_force
-from fem_asperity.path.curve import curve_from_columns
+from fem_asperity.curves.curve import curve_from_columns
 from gw.integrate import D_MAX, RATIO_MAX, WINDOW, separation_range, strength, totals
 from gw.laws import CorrectedLaw, PaperLaw, TabulatedLaw
 from gw.shared_ground import shared_ground

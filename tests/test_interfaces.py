@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 from scipy.linalg import LinAlgError
 
-from fem_asperity.path.curve import GridMoves
 from fem_asperity.path.grids import EdgeGrids, FixedGrid, Grids
+from fem_asperity.path.paths import GridMoves
 from fem_asperity.plumbing.errors import InputError
 from fem_asperity.solids.fe import Solid
 from fem_asperity.solids.operator import ElasticSurface, spd_inverse

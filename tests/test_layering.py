@@ -12,7 +12,7 @@ import fem_asperity.plumbing.revision as revision
 
 PACKAGE = Path(importlib.import_module("fem_asperity").__file__).parent
 #: Bottom up; a module may import from its own subpackage and from those before it.
-LAYERS = ("plumbing", "closed_forms", "solids", "path", "solver", "studies")
+LAYERS = ("plumbing", "closed_forms", "curves", "solids", "path", "solver", "studies")
 #: The only modules that import scikit-fem: the FE half-space and its mesh.
 SKFEM_MODULES = {"solids/fe.py", "solids/mesh.py"}
 

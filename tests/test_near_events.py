@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 import fem_asperity.solver.solve as solve
+from fem_asperity.curves.events import ESTIMATED
 from fem_asperity.path.continuation import _POINT_FIELDS, Trace
-from fem_asperity.path.curve import ESTIMATED
 from fem_asperity.path.near_events import events_near
 from fem_asperity.path.reading import refine_force_extrema
 from fem_asperity.solids.fe import Solid

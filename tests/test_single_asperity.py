@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from fem_asperity.closed_forms.laws import PAPER_LAWS, AsperityLaws
-from fem_asperity.path.curve import curve_from_columns
+from fem_asperity.curves.curve import curve_from_columns
 from validation.single_asperity import (
     SWEEP_MU,
     _transition,

@@ -13,10 +13,12 @@ from functools import partial
 
 import numpy as np
 
+from ..curves.curve import curve_from_columns
+from ..curves.events import Jump
 from ..plumbing.errors import ContinuationError
 from .continuation import APPROACH, Trace, approach_fraction, follow, start_state
-from .curve import GridMoves, Jump, Paths, curve_from_columns
 from .grids import Grids
+from .paths import GridMoves, Paths
 from .reading import (
     ADJACENT,
     COLUMNS,

@@ -36,8 +36,8 @@ from ..closed_forms.reference import (
 from ..plumbing.errors import ContinuationError, InputError
 from ..solids.bem import BoussinesqSurface, radial_grid
 from .continuation import correct_at_delta
-from .curve import GridMoves
 from .landing import land, peel
+from .paths import GridMoves
 from .surface import TIP_GAP, LJSurface, SurfaceShape
 
 #: A landing on moving grids: descent stages of LANDING_STAGE iterations (or a peel), at most
@@ -317,7 +317,7 @@ class EdgeGrids:
 
     def summary(self, moves):
         """How many grids followed the edge, their largest size, and from the path's `moves`
-        (`curve.GridMoves`) the largest move's |ΔP̄| and |Δā_c| and the largest |Δδ̄o| of a fold
+        (`paths.GridMoves`) the largest move's |ΔP̄| and |Δā_c| and the largest |Δδ̄o| of a fold
         found again elsewhere."""
         return (f"; {self.regrids} grids followed the contact edge (at most "
                 f"{self.largest_nodes} nodes), moving a state to a new grid changed P̄ by at "
@@ -405,7 +405,7 @@ class Grids(Protocol):
     from a state on `surface` lands, to land from instead, or None (then it lands from the
     fold).
     transplant(nodes, w, δ̄o): (surface, w) of a state given on other radial nodes, moved
-    here. summary(moves): a clause for the curve's message, with the path's `curve.GridMoves`.
+    here. summary(moves): a clause for the curve's message, with the path's `paths.GridMoves`.
     follows_edge: whether the grids move with the contact edge. dofs, largest_nodes: the cost
     of the largest solid used.
     """

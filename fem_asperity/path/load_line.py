@@ -18,8 +18,8 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ..closed_forms.lj import rigid_force
+from ..curves.events import Jump, parabola_vertex
 from ..plumbing.errors import ContinuationError
-from .curve import Jump, parabola_vertex
 from .reading import COLUMNS, path_from_rows, point_row
 from .whole_curve import state_at
 

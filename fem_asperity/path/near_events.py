@@ -21,10 +21,11 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
+from ..curves.events import ESTIMATED, JUMP_CONTACT, Jump, contact_index
 from ..plumbing.errors import ContinuationError
 from .branches import follow_branch
 from .continuation import Linearisation, correct
-from .curve import ESTIMATED, JUMP_CONTACT, GridMoves, Jump, contact_index
+from .paths import GridMoves
 
 #: Points of the curve traced again before and after each event, 3: the window then spans at
 #: least three turn limits either side, well beyond how far the event moves between the two
@@ -51,7 +52,7 @@ class NotNear(ContinuationError):
 def events_near(grids, settings, traced, branch, approach, retraction, jump_in, jump_out,
                 progress=None):
     """The events of a curve solved on `grids` (the finer discretisation's `grids.Grids`, with
-    its trace `settings`) near where the curve has them: a dict of the `curve.ESTIMATED`
+    its trace `settings`) near where the curve has them: a dict of the `curves.events.ESTIMATED`
     events, None where the
     curve has no such event or the finer discretisation none near it, plus 'missed' (event →
     why the finer discretisation has none near it) and the counters 'newton_iterations' and
@@ -60,7 +61,7 @@ def events_near(grids, settings, traced, branch, approach, retraction, jump_in, 
     traced: the curve's stable branches as one `continuation.Trace` (states, tangents and the
     nodes of each state); branch: their ids per point (`Curve.branch` of the equilibrium);
     approach, retraction: its displacement-control paths (`Curve`), jump_in, jump_out: its
-    first and last jumps (`curve.Jump` or None). progress: callable(fraction of the events
+    first and last jumps (`curves.events.Jump` or None). progress: callable(fraction of the events
     found), called as each is.
     """
     near = _Near(grids, settings, traced, np.asarray(branch))
@@ -254,12 +255,12 @@ class _Near:
 
     def initial_contact(self, approach, jump_in, fine_in):
         """δ̄o where the centre gap first reaches 1 ε on the approach, on the finer
-        discretisation: the jump's if contact forms by the jump (`curve.contact_index`: it lands
-        with x̄o ≤ 1 + JUMP_CONTACT), else the state with x̄o = 1
-        exactly (`continuation.correct` with x̄o as the constraint) on its branch, from the
-        first point with x̄o ≤ 1 of the branch traced from WINDOW points before; None if
+        discretisation: the jump's if contact forms by the jump
+        (`curves.events.contact_index`: it lands with x̄o ≤ 1 + JUMP_CONTACT), else the state
+        with x̄o = 1 exactly (`continuation.correct` with x̄o as the constraint) on its branch,
+        from the first point with x̄o ≤ 1 of the branch traced from WINDOW points before; None if
         contact never forms. (The curve's own is interpolated between samples,
-        `curve._initial_contact`: the estimate includes that error.)"""
+        `curves.events._initial_contact`: the estimate includes that error.)"""
         i = contact_index(approach)
         if i is None:
             return None

@@ -6,9 +6,10 @@ read off the whole curve (`whole_curve`), the stable branches (`branches`) and t
 import numpy as np
 from scipy.optimize import brentq
 
+from ..curves.curve import curve_from_columns
+from ..curves.events import parabola_vertex
 from ..plumbing.errors import ContinuationError
 from .continuation import Linearisation, correct
-from .curve import curve_from_columns, parabola_vertex
 
 COLUMNS = ("delta", "x", "p", "area", "a_c")
 #: Newton iterations per point of `root_along` (12 were needed at μ = 10 from a linear blend).

@@ -212,8 +212,8 @@ def _insert_roots(grids, trace, state, new, direction, tol, values=(_force_rate,
     """Append, in order along the path, the held states between the held `state` and `new`
     where each of `values` (functions of a held state) changes sign. On the approach the
     initial contact too (`_centre_gap_above_contact`; no event of the retraction), which
-    `curve._initial_contact` otherwise interpolates between points, too far apart on the tip's
-    long steps."""
+    `curves.events._initial_contact` otherwise interpolates between points, too far apart on
+    the tip's long steps."""
     roots = [_root(grids, state, new, of, tol) for of in values if of(state) * of(new) < 0.0]
     for root in sorted((r for r in roots if r is not None and r.before_fold),
                        key=lambda r: abs(r.tip - state.tip)):

@@ -8,9 +8,10 @@ next stable branch that the curve reaches at the same δ̄o (the landing, solved
 
 import numpy as np
 
+from ..curves.events import Jump
 from ..plumbing.errors import ContinuationError
 from .continuation import correct, trace
-from .curve import Jump, Paths
+from .paths import Paths
 from .reading import (
     equilibrium_curve,
     fold_by_parabola,

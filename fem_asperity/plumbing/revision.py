@@ -27,7 +27,7 @@ def _source(module):
 def _package_imports(module):
     """Absolute names of the modules of fem_asperity and of `module`'s own package (gw's, for a
     root in gw) that `module` imports from (the packages import from modules only: `from
-    ..path.curve import Curve`, never `from .. import path`)."""
+    ..curves.curve import Curve`, never `from .. import path`)."""
     tree = ast.parse(_source(module))
     package = module.rsplit(".", 1)[0]
     found = {importlib.util.resolve_name("." * node.level + (node.module or ""), package)

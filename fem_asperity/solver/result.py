@@ -8,7 +8,8 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 from ..closed_forms.physical_arguments import scale_record
-from ..path.curve import Curve, Events
+from ..curves.curve import Curve
+from ..curves.events import Events
 from ..plumbing.files import write_atomic
 from ..plumbing.revision import solver_revision
 from ..plumbing.version import __version__

@@ -21,8 +21,8 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from ..closed_forms.lj import bradley_force
+from ..curves.events import ESTIMATED, read_events
 from ..path.branches import stable_paths
-from ..path.curve import ESTIMATED, read_events
 from ..path.load_line import load_line_paths
 from ..path.near_events import events_near
 from ..path.whole_curve import whole_curve_paths

@@ -20,8 +20,8 @@ import numpy as np
 from scipy.optimize import brentq
 from threadpoolctl import threadpool_limits
 
+from ..curves.events import parabola_vertex
 from ..path.continuation import trace
-from ..path.curve import parabola_vertex
 from ..plumbing.errors import InputError
 from ..plumbing.revision import code_revision
 from ..solver.presets import discretisation

@@ -22,7 +22,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..path.curve import Curve, Events, Jump, curve_from_columns
+from ..curves.curve import Curve, curve_from_columns
+from ..curves.events import Events, Jump
 from ..plumbing.errors import InputError
 from ..plumbing.files import nearest_existing, writable_folder, write_atomic
 from ..plumbing.revision import solver_revision

@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from ..closed_forms.scales import si_unit
-from ..path.curve import Curve
+from ..curves.curve import Curve
 from ..plumbing.checks import in_range
 from ..plumbing.cli import format_cell
 from ..plumbing.errors import InputError

@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from fem_asperity.path.curve import parabola_vertex
+from fem_asperity.curves.events import parabola_vertex
 from fem_asperity.plumbing.checks import in_range, positive
 from fem_asperity.plumbing.errors import InputError
 

@@ -1,55 +1,11 @@
-"""Results along a path: the `Curve` arrays and the `Events` read off the approach and retraction.
+"""The events of one approach and retraction: the `Jump`s and the `Events` read off the two paths.
 
-Units: δ̄o, x̄o in ε; P̄ in 2πRΔγ (negative = tensile); Ā in εR; ā_c in √(εR).
+Units: δ̄o, x̄o in ε; P̄ in 2πRΔγ (negative = tensile); ā_c in √(εR).
 """
 
-import csv
-import io
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
-
-
-@dataclass(frozen=True)
-class Curve:
-    """Points along a path (the equilibrium curve, or the approach/retraction under δ̄o control).
-
-    `stable`: the point is a local energy minimum at fixed δ̄o. `branch`: segment id, increased at
-    every change of stability (equilibrium curve) or at every jump (approach/retraction paths).
-    """
-
-    delta: np.ndarray
-    x: np.ndarray
-    p: np.ndarray
-    area: np.ndarray
-    a_c: np.ndarray
-    stable: np.ndarray
-    branch: np.ndarray
-
-    def __len__(self):
-        return self.delta.size
-
-    def csv(self):
-        """The curve as CSV text with a header row naming each column and its unit
-        (`CSV_HEADER`: quantity/unit, the dimensionless units of the paper)."""
-        out = io.StringIO()
-        writer = csv.writer(out, lineterminator="\n")
-        writer.writerow(CSV_HEADER)
-        for row in zip(*(getattr(self, f.name) for f in fields(self))):
-            writer.writerow([f"{v:.10g}" if isinstance(v, float) else int(v) for v in row])
-        return out.getvalue()
-
-
-#: Header of a curve's CSV: each column as quantity/unit (ε the LJ spacing, R the radius, Δγ the
-#: work of adhesion; forces < 0 tensile), then the stability flag and the branch number.
-CSV_HEADER = ("delta_o/eps", "x_o/eps", "p/(2 pi R dgamma)", "area/(eps R)", "a_c/sqrt(eps R)",
-              "stable", "branch")
-
-
-def curve_from_columns(delta, x, p, area, a_c, stable, branch):
-    """Build a `Curve` from sequences, converting to float/bool/int arrays."""
-    floats = [np.asarray(v, dtype=float) for v in (delta, x, p, area, a_c)]
-    return Curve(*floats, np.asarray(stable, dtype=bool), np.asarray(branch, dtype=int))
 
 
 @dataclass(frozen=True)
@@ -63,40 +19,6 @@ class Jump:
     p_after: float
     a_c_after: float
     x_after: float
-
-
-@dataclass
-class GridMoves:
-    """What the placement of grids that follow the contact edge changed along a path, filled as
-    it is traced: the largest |ΔP̄| and |Δā_c| of a state moved to a new grid while on a branch
-    (`record_move`) and the largest |Δδ̄o| of a fold found again on grids placed otherwise
-    (`record_fold`); the error estimate's grid-placement terms."""
-
-    force: float = 0.0
-    radius: float = 0.0
-    fold: float = 0.0
-
-    def record_move(self, change, radius_change):
-        self.force, self.radius = max(self.force, change), max(self.radius, radius_change)
-
-    def record_fold(self, change):
-        self.fold = max(self.fold, change)
-
-
-@dataclass(frozen=True)
-class Paths:
-    """Both paths under δ̄o control and what they were read from: `approach`, `retraction`
-    (`Curve`s), the jumps in and out (`Jump`s), the `equilibrium` curve traced, the `traced`
-    states behind it (a `continuation.Trace`) and the `moves` of grids that follow the edge
-    (None where the curve was read off the whole curve on one grid)."""
-
-    approach: Curve
-    retraction: Curve
-    jumps_in: list
-    jumps_out: list
-    equilibrium: Curve
-    traced: object
-    moves: GridMoves | None = None
 
 
 @dataclass(frozen=True)
