@@ -26,8 +26,8 @@ from provenance import add_output_options, provenance, write_results
 
 from fem_asperity.plumbing.cli import ProgressBar
 from fem_asperity.plumbing.errors import ContinuationError
+from fem_asperity.solver.discretised import solve_discretised
 from fem_asperity.solver.presets import METHODS, PRESETS, discretisation
-from fem_asperity.solver.solve import solve_discretised
 
 #: Events compared with the reference: pull-off force, and the most tensile approach force's
 #: separation and contact radius, and the separation before the jump-in (the paper's fitted laws).

@@ -16,8 +16,8 @@ from dataclasses import replace
 
 from provenance import add_output_options, provenance, write_results
 
+from fem_asperity.solver.discretised import solve_discretised
 from fem_asperity.solver.presets import RIPPLE_FREE, discretisation
-from fem_asperity.solver.solve import solve_discretised
 
 #: (grid, μ, values of c = h μ²): around each grid's onset (the FE above μ = 5 costs minutes
 #: per curve, and large μ is the edge-following BEM's).

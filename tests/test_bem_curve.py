@@ -6,9 +6,11 @@ import numpy as np
 import pytest
 
 from fem_asperity import InputError
+from fem_asperity.curves.events import ESTIMATED
 from fem_asperity.solids.fe import Solid
+from fem_asperity.solver.discretised import solve_discretised
 from fem_asperity.solver.presets import discretisation
-from fem_asperity.solver.solve import ESTIMATED, solve_curve, solve_discretised
+from fem_asperity.solver.solve import solve_curve
 from fem_asperity.studies.onset import fold_margin
 
 
@@ -70,17 +72,17 @@ def test_the_fes_estimate_is_none_if_the_bem_curve_fails(monkeypatch):
     """The boundary integral's curve alongside the FE: if it fails, the FE curve is kept
     without an estimate, and the message says what to try instead. (If the FE stops, the BEM
     curve stops too: `test_an_interrupted_curve_stops_its_estimate_solve_too`.)"""
-    import fem_asperity.solver.solve as solve
+    import fem_asperity.solver.discretised as discretised
 
-    real = solve._solve_traced
+    real = discretised.solve_traced
 
     def failing_bem(mu, disc, **kwargs):
         if disc.method == "bem":
             raise InputError("need 0 < h <= band (from inside the BEM curve)")
         return real(mu, disc, **kwargs)
 
-    monkeypatch.setattr(solve, "_solve_traced", failing_bem)
-    result = solve.solve_curve(1.0, accuracy="draft")
+    monkeypatch.setattr(discretised, "solve_traced", failing_bem)
+    result = solve_curve(1.0, accuracy="draft")
     assert result.error_estimate is None and result.status == "no_estimate"
     assert "InputError" in result.message and result.events.jump_in is not None
     assert "estimate_by='finer'" in result.message  # what to do instead
@@ -308,9 +310,10 @@ def test_a_failing_error_estimate_never_costs_the_result(monkeypatch):
     """Whatever stops the estimate's solve (here an input error from inside it, as the grid of a
     diverged state raised at mu = 9, BEM draft), the curve is kept without an estimate: with
     the estimate traced near the events and with a whole finer solve (the whole curve)."""
-    import fem_asperity.solver.solve as solve
+    import fem_asperity.solver.discretised as discretised
+    import fem_asperity.solver.estimate as estimate
 
-    real = solve._solve_traced
+    real = discretised.solve_traced
 
     def failing(*args, **kwargs):
         raise InputError("need 0 < h <= band (from inside the estimate's solve)")
@@ -320,10 +323,10 @@ def test_a_failing_error_estimate_never_costs_the_result(monkeypatch):
             failing()
         return real(mu, disc, **kwargs)
 
-    monkeypatch.setattr(solve, "events_near", failing)
-    monkeypatch.setattr(solve, "_solve_traced", failing_whole)
+    monkeypatch.setattr(estimate, "events_near", failing)
+    monkeypatch.setattr(discretised, "solve_traced", failing_whole)
     for whole in (False, True):
-        result = solve.solve_curve(1.0, method="bem", accuracy="draft", unstable_branch=whole)
+        result = solve_curve(1.0, method="bem", accuracy="draft", unstable_branch=whole)
         assert result.error_estimate is None and result.status == "no_estimate"
         assert "InputError" in result.message and result.events.jump_in is not None
 
@@ -345,13 +348,13 @@ def test_a_rippling_curve_is_refined_and_reports_the_physical_jumps():
     """Elements as long as the old `draft`'s at μ = 3 ripple (6 folds); the jump-out read off
     that curve is still the last fold, the separation (within 1e-3 of the refined curve's; the
     first fold was a ripple), and the solve refines once to a curve without ripple."""
-    from fem_asperity.solver.solve import _solve_refining
+    from fem_asperity.solver.discretised import solve_refining
 
     mu = 3.0
     disc = replace(discretisation(mu, "draft", method="bem"), h_surface=0.25 * mu**-1.5)
     rippled = solve_discretised(mu, disc)
     assert rippled.ripples and rippled.status == "ripples"
-    result, solved_on, _ = _solve_refining(mu, disc, solid=Solid(), radius_ratio=None,
+    result, solved_on, _ = solve_refining(mu, disc, solid=Solid(), radius_ratio=None,
                                            unstable_branch=False, spring_constant=None)
     assert result.folds == 2 and result.status == "ok" and "refined 1 time" in result.message
     assert solved_on.h_surface == disc.h_surface / 2
@@ -386,7 +389,7 @@ def test_progress_rises_to_one_at_the_end_only(mu, estimate):
     assert seen[-1] == 1.0 and max(seen[:-1]) < 1.0
     assert max(seen[:-1]) > 0.9  # the retraction moves the bar on before the end
     if estimate:  # traced after the curve, near each event: the bar moves on meanwhile
-        from fem_asperity.solver.solve import ALMOST_DONE, CURVE_SHARE
+        from fem_asperity.solver.estimate import ALMOST_DONE, CURVE_SHARE
 
         curve_done = len(seen) - seen[::-1].index(CURVE_SHARE)  # the curve's last report
         assert any(CURVE_SHARE < f < ALMOST_DONE for f in seen[curve_done:])
@@ -400,9 +403,9 @@ def test_an_interrupted_curve_stops_its_estimate_solve_too(monkeypatch, options,
     """Ctrl-C (or an error) in a curve ends the estimate's longer solve alongside at its next
     point instead of waiting for it: a whole curve's (`unstable_branch`) whole finer solve, an
     FE curve's boundary-integral curve. The estimate's solve ends with `_Stopped`."""
-    import fem_asperity.solver.solve as solve
+    import fem_asperity.solver.discretised as discretised
 
-    real, ended = solve._solve_traced, {}
+    real, ended = discretised.solve_traced, {}
 
     def interrupted(mu, disc, **kwargs):
         if not is_estimates(disc):
@@ -413,9 +416,9 @@ def test_an_interrupted_curve_stops_its_estimate_solve_too(monkeypatch, options,
             ended["estimate"] = type(exc).__name__
             raise
 
-    monkeypatch.setattr(solve, "_solve_traced", interrupted)
+    monkeypatch.setattr(discretised, "solve_traced", interrupted)
     with pytest.raises(KeyboardInterrupt):
-        solve.solve_curve(3.0, accuracy="fine", **options)
+        solve_curve(3.0, accuracy="fine", **options)
     assert ended == {"estimate": "_Stopped"}
 
 
@@ -432,7 +435,7 @@ def test_the_estimate_of_a_force_sees_the_traction_beyond_the_grid():
     Bradley's force at the gap there, (4/3)(r²/2 + δ̄o)⁻² ≈ 5.3e-8, which a finer grid of the
     same reach cannot see. Against the same BEM reaching 800 (its P̄off moved by 1.5e-10 from
     400 to 800) the error of P̄off at μ = 1e-3 is that tail, and the estimate covers it."""
-    from fem_asperity.solver.solve import solve_discretised
+    from fem_asperity.solver.discretised import solve_discretised
 
     result = solve_curve(1e-3, method="bem", accuracy="default")
     far = solve_discretised(1e-3, replace(discretisation(1e-3, "default", method="bem"),

@@ -7,14 +7,15 @@ from concurrent.futures import Future
 import numpy as np
 import pytest
 
+import fem_asperity.solver.estimate as estimate
 import fem_asperity.solver.solve as solve
 from fem_asperity.curves.events import ESTIMATED
 from fem_asperity.path.continuation import _POINT_FIELDS, Trace
 from fem_asperity.path.near_events import events_near
 from fem_asperity.path.reading import refine_force_extrema
 from fem_asperity.solids.fe import Solid
+from fem_asperity.solver.discretised import discretisation_for, solve_discretised, solve_refining
 from fem_asperity.solver.presets import MU_TRACKING
-from fem_asperity.solver.solve import _discretisation, _solve_refining
 
 #: Events at the jump-in's landing (where the approach is most tensile at these μ).
 LANDED = ("p_max", "a_c", "p_jump_after")
@@ -23,8 +24,8 @@ OPTIONS = dict(solid=Solid(), radius_ratio=None, unstable_branch=False, spring_c
 
 def _solved(mu, method, accuracy):
     """(curve, the discretisation it was solved on, its trace), as `solve_curve` solves it."""
-    disc = _discretisation(mu, accuracy, method=method, p_end=1.0, options=OPTIONS)
-    return _solve_refining(mu, disc, **OPTIONS)
+    disc = discretisation_for(mu, accuracy, method=method, p_end=1.0, options=OPTIONS)
+    return solve_refining(mu, disc, **OPTIONS)
 
 
 def _curve_and_near(mu, method, accuracy):
@@ -59,18 +60,18 @@ def test_events_near_each_event_are_the_whole_finer_solves(mu, method, accuracy)
     δ̄o at the jump-out 3.0e-9 (0.2 %) once the grids were placed by the edges' motion
     (3b81e19); 6.9e-10 and 2.4e-9 before. Since the jumps land from guesses (9355f45) the two
     finer solves' grids differ more, and on them each event agrees within the difference plus
-    what the estimate adds for grids placed otherwise (`solve.FORCES`, `solve.RADII`: the
+    what the estimate adds for grids placed otherwise (`estimate.FORCES`, `estimate.RADII`: the
     largest change of a move): at μ = 7 P̄off 2.5e-9 apart, ā_c at the jump-in 4.4e-5, with
     differences 1e-9 and 3.8e-5."""
     result, near, partner = _curve_and_near(mu, method, accuracy)
     curve = result.events.records()
-    whole = solve.solve_discretised(mu, partner, **OPTIONS).events.records()
+    whole = solve_discretised(mu, partner, **OPTIONS).events.records()
     assert near["missed"] == {} and near["windows"] >= 2
     tracked = mu >= MU_TRACKING[method]
     placed = dict.fromkeys(ESTIMATED, 0.0)
     if tracked:
-        placed |= dict.fromkeys(solve.FORCES, result.regrid_change)
-        placed |= dict.fromkeys(solve.RADII, result.regrid_radius_change)
+        placed |= dict.fromkeys(estimate.FORCES, result.regrid_change)
+        placed |= dict.fromkeys(estimate.RADII, result.regrid_radius_change)
     for key in ESTIMATED:
         if whole[key] is None:
             assert curve[key] is None or near[key] is None, key

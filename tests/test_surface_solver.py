@@ -8,8 +8,8 @@ from fem_asperity.path.continuation import Linearisation
 from fem_asperity.path.elimination import relax_edge
 from fem_asperity.path.newton import edge_block
 from fem_asperity.path.surface import LJSurface
+from fem_asperity.solver.discretised import solve_discretised
 from fem_asperity.solver.presets import discretisation
-from fem_asperity.solver.solve import solve_discretised
 
 
 @pytest.fixture(scope="module")

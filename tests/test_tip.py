@@ -9,8 +9,9 @@ from fem_asperity.path.landing import land
 from fem_asperity.path.surface import LJSurface
 from fem_asperity.path.tip import _insert_roots
 from fem_asperity.solids.bem import BoussinesqSurface, radial_grid
+from fem_asperity.solver.discretised import solve_discretised
 from fem_asperity.solver.presets import discretisation
-from fem_asperity.solver.solve import solve_curve, solve_discretised
+from fem_asperity.solver.solve import solve_curve
 
 TOL = 1e-9
 
@@ -170,8 +171,8 @@ def test_the_approach_followed_in_the_tip_gives_the_arc_length_paths_curve(monke
 def test_the_jump_outs_fold_found_elsewhere_widens_its_estimate():
     """BEM `draft` at μ = 8: the jump-out's fold found again from its bracketing states, each
     on a grid centred the grids' lead further along, moves (`regrid_fold_change` > 0), and the
-    estimate of δ̄o at the jump-out includes that move (`solve.FOLDS`): the finer partner places
-    its grids alike and does not see it."""
+    estimate of δ̄o at the jump-out includes that move (`solver.estimate.FOLDS`): the finer
+    partner places its grids alike and does not see it."""
     result = solve_curve(8.0, method="bem", accuracy="draft")
     assert result.regrid_fold_change > 0.0
     assert result.error_estimate["delta_jump_out"] >= result.regrid_fold_change

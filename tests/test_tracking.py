@@ -9,9 +9,10 @@ import pytest
 from fem_asperity import InputError
 from fem_asperity.closed_forms.lj import scaled_traction_slope
 from fem_asperity.path.grids import edge_grid, spring_ratio
+from fem_asperity.solver.discretised import solve_discretised
 from fem_asperity.solver.output import state_fields
 from fem_asperity.solver.presets import MU_TRACKING, discretisation
-from fem_asperity.solver.solve import solve_curve, solve_discretised
+from fem_asperity.solver.solve import solve_curve
 
 
 def test_spring_ratio_limits():

@@ -19,8 +19,9 @@ from dataclasses import replace
 
 import numpy as np
 
+from fem_asperity.solver.discretised import solve_discretised
 from fem_asperity.solver.presets import PRESETS, discretisation
-from fem_asperity.solver.solve import solve_curve, solve_discretised
+from fem_asperity.solver.solve import solve_curve
 
 #: Events judged: the pull-off force, the most tensile approach force's separation and contact
 #: radius, the gap before the jump-in, the jumps' positions, and the approach force maximum.

@@ -78,7 +78,7 @@ def _far_landing(surface, traced, curve, z_jump, k):
     than at δ̄₀), the state solved by Newton at that δ̄o from the state at δ̄₀. So no curve is
     traced out to 1/k̄. Its P̄ is the rigid sphere's: the traction grid, ending at a finite
     radius, under-counts the pull that far out (by 0.8 % at δ̄o = 490 on the BEM's r = 100,
-    `solver.solve.traction_tail`). Where that under-count alone put the landing beyond δ̄₀ (the
+    `solver.estimate.traction_tail`). Where that under-count alone put the landing beyond δ̄₀ (the
     balance on the rigid force lies short of it), it lands on the state at δ̄₀."""
     start = float(curve.delta[0])
 

@@ -250,8 +250,8 @@ def _record_fold_elsewhere(grids, moves, fold, last, beyond, direction, tol):
     """Find the fold at δ̄o = `fold` again from the held `last` and `beyond`, each solved on a
     grid centred the grids' lead further along (as `follow_tip` measures its states), and record
     how far its δ̄o moved in `moves` (`GridMoves.record_fold`): the error estimate's finer
-    partner places its grids alike, and misses this term otherwise (`solve.FOLDS`). Where the
-    two moved states lie on one side of the fold, up to BRACKETING more states a bracket's
+    partner places its grids alike, and misses this term otherwise (`solver.estimate.FOLDS`).
+    Where the two moved states lie on one side of the fold, up to BRACKETING more states a bracket's
     width apart, each on the branch (`along`). A measurement that fails records nothing."""
     try:
         first, second = [_moved_ahead(grids, state, direction, tol)
@@ -284,7 +284,7 @@ def _fold(grids, moves, trace, last, beyond, direction, tol):
     fold = _root(grids, last, beyond, _delta_rate, tol)
     if fold is None:  # the last stable state stands in for it
         fold = last
-    elif direction < 0:  # the jump-out, whose estimate adds the move (`solve.FOLDS`)
+    elif direction < 0:  # the jump-out, whose estimate adds the move (`solver.estimate.FOLDS`)
         _record_fold_elsewhere(grids, moves, fold.delta, last, beyond, direction, tol)
     _insert_roots(grids, trace, last, fold, direction, tol)
     radius = fold.contact[1]

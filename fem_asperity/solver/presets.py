@@ -38,7 +38,7 @@ H_MAX_BEM = 0.025
 #: test_fem_elastic.py::test_truncation_size_no_longer_matters.
 DOMAIN_SIZE = 1e3
 #: Last node of the BEM traction grid (√(Rε)): the LJ tail beyond carries ≈ (16/3) r⁻⁴ ≈ 5e-8.
-#: Not pinned by a test (the estimate adds it, `solve.traction_tail`).
+#: Not pinned by a test (the estimate adds it, `estimate.traction_tail`).
 TRACTION_RADIUS = 100.0
 #: FE bulk grading (size growth per unit distance from the surface strip). docs/methods.md §12;
 #: test_bem_curve.py::test_bem_agrees_with_fem_within_the_error_estimates (μ = 3, slow).

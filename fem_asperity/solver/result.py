@@ -63,11 +63,11 @@ class CurveResult:
     events: `Events` read off the paths. error_estimate: estimated absolute error per event key,
     in the event's units (None where not estimated); relative_error_estimate holds the same
     relative to the event. estimated_by: how the estimate was made, 'finer' (the events again
-    on a finer discretisation, `solve._estimate`), 'bem' (the FE against the boundary
-    integral, `solve._estimate_against_bem`), 'tolerance' (the last change between refinement
+    on a finer discretisation, `estimate.difference_estimate`), 'bem' (the FE against the boundary
+    integral, `estimate._estimate_against_bem`), 'tolerance' (the last change between refinement
     levels, `solve.solve_to_tolerance`) or None (no estimate asked for). estimate_floor: the
     part of each force's estimate that no refinement sees, {force key: 2πRΔγ}: the LJ traction
-    beyond the traction grid's last node (`solve.traction_tail`), added to the estimate.
+    beyond the traction grid's last node (`estimate.traction_tail`), added to the estimate.
     dofs, surface_nodes, points, newton_iterations, wall_s: cost.
     folds: folds of δ̄o met: changes of stability along the whole curve, or jumps of the paths.
     radius_ratio (R/ε of the exact sphere; None: Derjaguin's parabola), p_end, unstable_branch,

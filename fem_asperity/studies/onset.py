@@ -24,8 +24,9 @@ from ..curves.events import parabola_vertex
 from ..path.continuation import trace
 from ..plumbing.errors import InputError
 from ..plumbing.revision import code_revision
+from ..solver.discretised import PATH_BLAS_THREADS
 from ..solver.presets import discretisation
-from ..solver.solve import PATH_BLAS_THREADS, solvable_mu
+from ..solver.solve import solvable_mu
 from .store import cache_dir, stored_json
 
 

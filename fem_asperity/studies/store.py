@@ -28,9 +28,10 @@ from ..plumbing.errors import InputError
 from ..plumbing.files import nearest_existing, writable_folder, write_atomic
 from ..plumbing.revision import solver_revision
 from ..solids.fe import Solid
+from ..solver.estimate import estimate_kind
 from ..solver.presets import METHODS, PRESETS
 from ..solver.result import curve_files, relative_estimate
-from ..solver.solve import estimate_kind, solvable_mu, solve_curve
+from ..solver.solve import solvable_mu, solve_curve
 
 try:
     import fcntl
@@ -108,7 +109,7 @@ def check_entry(mu, method, accuracy):
 def curve_folder(mu, *, method, accuracy, error_estimate, estimate_by="auto",
                  unstable_branch=False, solid=Solid(), cache=None):
     """Where the curve at (`mu`, method, accuracy, solid) of this solver revision is stored;
-    curves without the error estimate, with each kind of it (`solve.estimate_kind` of
+    curves without the error estimate, with each kind of it (`estimate.estimate_kind` of
     `estimate_by`), and with the whole equilibrium curve (`unstable_branch`), are kept apart
     (each costs more); a solid other than the default adds its Poisson's ratio and layer."""
     kind = estimate_kind(estimate_by, method, solid)  # refused as solve_curve refuses it

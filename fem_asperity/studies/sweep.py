@@ -2,7 +2,7 @@
 finishes, so that a rerun (after a crash, a Ctrl-C or with more μ) solves only what is missing.
 
 Curves run in worker processes on this machine (`jobs`, both cores by default, one BLAS thread
-each: `solver.solve.PATH_BLAS_THREADS`) or on a Dask cluster (`scheduler`, the address of a
+each: `solver.discretised.PATH_BLAS_THREADS`) or on a Dask cluster (`scheduler`, the address of a
 running `dask.distributed` scheduler; the optional extra `cluster`). Workers only solve; this
 process keeps each result in its own store, so a cluster needs no shared file system. A μ whose
 curve fails is reported in its row (status 'failed' and the error) and never costs the others.
