@@ -18,7 +18,7 @@ from ..curves.events import Jump
 from ..plumbing.errors import ContinuationError
 from .continuation import APPROACH, Trace, approach_fraction, follow, start_state
 from .grids import Grids
-from .paths import GridMoves, Paths
+from .paths import GridMoves, PathPoint, Paths, disc_area
 from .reading import (
     ADJACENT,
     COLUMNS,
@@ -79,15 +79,15 @@ def follow_branch(grids, moves, surface, w, delta, heading, settings, until, on_
             merged.extend(traced)
             return merged, fold, beyond, surface, None
         w, delta = traced.states[-1], traced.delta[-1]
-        before = {c: getattr(traced, c)[-1] for c in ("x", "p", "a_c", "area")}
+        before = point_row(traced, -1, 0)
         traced.drop_last()  # solved again on the next grid
         merged.extend(traced)
         surface, w, its = grids.regrid(surface, w, delta, tol=settings.tol)
         merged.newton_iterations += its
-        change = abs(surface.force(w, delta) - before["p"])
+        change = abs(surface.force(w, delta) - before.p)
         if change > REGRID_JUMP:
-            return merged, (delta, before), None, surface, (surface, w)
-        moves.record_move(change, abs(surface.contact(w, delta)[1] - before["a_c"]))
+            return merged, before, None, surface, (surface, w)
+        moves.record_move(change, abs(surface.contact(w, delta)[1] - before.a_c))
 
 
 def _done_or_off_grid(until, grids, surface, tr):
@@ -97,7 +97,7 @@ def _done_or_off_grid(until, grids, surface, tr):
 
 def _piece(surface, w, delta, heading, settings, until, on_point, admissible=None):
     """(stable Trace from (w, δ) with its force extrema refined, fold, state past the fold and
-    its δ̄o): fold = (δ̄o, values before) at the branch's end, or None if `until` was met.
+    its δ̄o): the fold (a `PathPoint`) at the branch's end, or None if `until` was met.
 
     The fold is where dδ̄o/ds = 0 between the last stable and the first unstable point
     (`reading.root_along`), or one interval earlier (`reading.ADJACENT`: the last point
@@ -117,16 +117,17 @@ def _piece(surface, w, delta, heading, settings, until, on_point, admissible=Non
                 break
         if exact is not None:
             w_f, d_f, _ = exact
-            fold = float(d_f), dict(x=surface.centre_gap(w_f, d_f), p=surface.force(w_f, d_f),
-                             a_c=surface.contact(w_f, d_f)[1])
+            radius = surface.contact(w_f, d_f)[1]
+            fold = PathPoint(float(d_f), surface.centre_gap(w_f, d_f), surface.force(w_f, d_f),
+                             disc_area(radius), radius)
             while len(traced.delta) > j + 2:  # a point flagged stable past the fold
                 traced.drop_last()
         elif k >= 1:
             fold = fold_by_parabola(equilibrium_curve(traced), k, k + 1,
                                     descending=heading[1] < 0)
         else:
-            fold = traced.delta[0], {c: getattr(traced, c)[0] for c in ("x", "p", "a_c")}
-        fold[1]["area"] = 0.0 if fold[1]["a_c"] <= 0.0 else np.pi * fold[1]["a_c"] ** 2
+            fold = PathPoint(traced.delta[0], traced.x[0], traced.p[0],
+                             disc_area(traced.a_c[0]), traced.a_c[0])
         traced.drop_last()
     refine_force_extrema(surface, traced)
     return traced, fold, beyond, beyond_delta
@@ -142,7 +143,7 @@ def land_jump(grids, surface, fold, beyond, settings, counter, landed=None, *,
     (a check that it lies downhill, not that the descent from the fold ends there: at large μ
     the approach has one stable state in contact at the jump-in's δ̄o, the retraction none at
     the jump-out's)."""
-    delta, before = fold
+    delta = fold.delta
     if landed is None:
         landed, iterations = _land_from_guess(grids, surface, beyond, delta, settings,
                                               into_contact)
@@ -153,9 +154,9 @@ def land_jump(grids, surface, fold, beyond, settings, counter, landed=None, *,
     else:
         surface, w = landed
     x, p = surface.centre_gap(w, delta), surface.force(w, delta)
-    if abs(x - before["x"]) <= 1e-9 * (1.0 + abs(x)):
+    if abs(x - fold.x) <= 1e-9 * (1.0 + abs(x)):
         raise ContinuationError(f"the jump at δ = {delta:.6g} landed back on its own branch")
-    return surface, w, Jump(delta=delta, x_before=before["x"], p_before=before["p"], p_after=p,
+    return surface, w, Jump(delta=delta, x_before=fold.x, p_before=fold.p, p_after=p,
                    a_c_after=surface.contact(w, delta)[1], x_after=x)
 
 
@@ -223,11 +224,11 @@ def stable_paths(grids: Grids, settings, progress=None):
             break
         if len(jumps_in) >= MAX_JUMPS:
             raise ContinuationError(f"more than {MAX_JUMPS} jumps on approach")
-        approach.append(dict(delta=fold[0], **fold[1], branch=len(jumps_in)))
+        approach.append(fold.on(len(jumps_in)))
         surface, w, jump = land_jump(grids, surface, fold, beyond, settings, traced, landed,
                                      into_contact=True)
         jumps_in.append(jump)
-        delta, heading = fold[0], _DOWN
+        delta, heading = fold.delta, _DOWN
     retraction, jumps_out, extra = _retract(grids, moves, starts, settings, branches, traced,
                                             progress)
     ids = []
@@ -277,16 +278,16 @@ def _retract(grids, moves, starts, settings, branches, counter, progress):
                 return rows, jumps, extra
             if len(jumps) >= MAX_JUMPS:
                 raise ContinuationError(f"more than {MAX_JUMPS} jumps on retraction")
-            rows.append(dict(delta=fold[0], **fold[1], branch=len(jumps)))
+            rows.append(fold.on(len(jumps)))
             surface, w, jump = land_jump(grids, surface, fold, beyond, settings, counter, landed,
                                          into_contact=False)
             jumps.append(jump)
-            delta, skip = fold[0], 0
+            delta, skip = fold.delta, 0
             known = _approach_branch(branches, delta, jump.x_after,
                                      abs(jump.x_after - jump.x_before))
             if known is not None:
                 area, radius = surface.contact(w, delta)
-                rows.append(dict(delta=delta, x=jump.x_after, p=jump.p_after, area=area,
-                                 a_c=radius, branch=len(jumps)))
+                rows.append(PathPoint(delta, jump.x_after, jump.p_after, area, radius,
+                                      len(jumps)))
                 j, c = known
                 break

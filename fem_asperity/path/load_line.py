@@ -14,12 +14,15 @@ curve's sampling (the turn limit), unlike the exact folds of displacement contro
 solved by Newton at the δ̄o interpolated in z̄.
 """
 
+from dataclasses import dataclass, replace
+
 import numpy as np
 from scipy.optimize import brentq
 
 from ..closed_forms.lj import rigid_force
 from ..curves.events import Jump, parabola_vertex
 from ..plumbing.errors import ContinuationError
+from .paths import PathPoint
 from .reading import COLUMNS, path_from_rows, point_row
 from .whole_curve import state_at
 
@@ -34,9 +37,9 @@ def spring_stable(curve, tangents, k):
 
 
 def _fold(curve, z, i, j):
-    """(z̄, row) at the extremum of z̄ between the stable sample i and the unstable sample j: a
-    parabola in arc length (in x̄o, δ̄o, P̄) through the three samples centred on the more
-    extreme."""
+    """(z̄, `PathPoint`) at the extremum of z̄ between the stable sample i and the unstable
+    sample j: a parabola in arc length (in x̄o, δ̄o, P̄) through the three samples centred on the
+    more extreme."""
     descending = z[j] < z[i] if z[j] != z[i] else True
     pair = np.array([i, j])
     extreme = pair[np.argmin(z[pair] if descending else -z[pair])]
@@ -46,17 +49,17 @@ def _fold(curve, z, i, j):
                     + np.diff(curve.p[three]) ** 2)
     arc = np.concatenate([[0.0], np.cumsum(steps)])
     s_star, z_star = parabola_vertex(arc, z[three])
-    row = {c: float(np.polyval(np.polyfit(arc, getattr(curve, c)[three], 2), s_star))
-           for c in COLUMNS}
+    row = PathPoint(*(float(np.polyval(np.polyfit(arc, getattr(curve, c)[three], 2), s_star))
+                      for c in COLUMNS))
     return float(z_star), row
 
 
 def _landing(surface, traced, curve, z, stable, order, start, z_jump, k):
-    """(position in `order` to go on from, row) of the first segment after `start` whose two ends
-    are stable and whose z̄ spans `z_jump`: δ̄o interpolated linearly in z̄ between them, then the
-    state there solved by Newton at that δ̄o (far from contact the samples are sparse, and P̄
-    interpolated between them was 7% off after the jump-out at μ = 2). A jump away from the
-    surface past the curve's far start lands beyond it (`_far_landing`)."""
+    """(position in `order` to go on from, `PathPoint`) of the first segment after `start` whose
+    two ends are stable and whose z̄ spans `z_jump`: δ̄o interpolated linearly in z̄ between them,
+    then the state there solved by Newton at that δ̄o (far from contact the samples are sparse,
+    and P̄ interpolated between them was 7% off after the jump-out at μ = 2). A jump away from
+    the surface past the curve's far start lands beyond it (`_far_landing`)."""
     for pos in range(start, len(order) - 1):
         a, b = order[pos], order[pos + 1]
         if not (stable[a] and stable[b]) or (z[a] - z_jump) * (z[b] - z_jump) > 0.0:
@@ -92,7 +95,7 @@ def _far_landing(surface, traced, curve, z_jump, k):
     if landed is None:
         raise ContinuationError(f"no state to land on at z = {z_jump:.6g} under the spring "
                                 f"(delta = {delta:.6g})")
-    return landed | {"p": rigid_force(delta, radius_ratio=surface.radius_ratio)}
+    return replace(landed, p=rigid_force(delta, radius_ratio=surface.radius_ratio))
 
 
 def _walk(surface, traced, curve, z, stable, order, k):
@@ -104,32 +107,45 @@ def _walk(surface, traced, curve, z, stable, order, k):
         zs.append(z[i])
         if pos + 1 < len(order) and not stable[order[pos + 1]]:
             z_jump, before = _fold(curve, z, i, order[pos + 1])
-            rows.append(before | {"branch": branch})
+            rows.append(before.on(branch))
             zs.append(z_jump)
             pos, after = _landing(surface, traced, curve, z, stable, order, pos + 1, z_jump,
                                   k)
             branch += 1
-            rows.append(after | {"branch": branch})
+            rows.append(after.on(branch))
             zs.append(z_jump)
-            jumps.append(Jump(delta=before["delta"], x_before=before["x"], p_before=before["p"],
-                              p_after=after["p"], a_c_after=after["a_c"], x_after=after["x"]))
+            jumps.append(Jump(delta=before.delta, x_before=before.x, p_before=before.p,
+                              p_after=after.p, a_c_after=after.a_c, x_after=after.x))
             z_jumps.append(z_jump)
         pos += 1
     return rows, np.array(zs), jumps, z_jumps
 
 
+@dataclass(frozen=True)
+class LoadLinePaths:
+    """Both paths under a spring's control: `approach` and `retraction` (`Curve`s in the sphere's
+    δ̄o, a jump as consecutive points at equal z̄), the `Jump`s in and out, the spring end's z̄
+    along each path and at each jump."""
+
+    approach: object
+    retraction: object
+    jumps_in: list
+    jumps_out: list
+    z_approach: np.ndarray
+    z_retraction: np.ndarray
+    z_in: list
+    z_out: list
+
+
 def load_line_paths(surface, traced, curve, k):
-    """Approach and retraction under load-line control with spring stiffness `k` (2πRΔγ/ε), read
-    off the whole equilibrium `curve` (ordered from the far start to the deepest load) as traced
-    (`traced`: its states and unit tangents) on `surface`. Returns (approach, retraction, jumps
-    in, jumps out, z̄ along the approach, z̄ along the retraction, z̄ of the jumps in, z̄ of the
-    jumps out); the paths are `Curve`s in the sphere's δ̄o, a jump as consecutive points at equal
-    z̄."""
+    """`LoadLinePaths`: approach and retraction under load-line control with spring stiffness `k`
+    (2πRΔγ/ε), read off the whole equilibrium `curve` (ordered from the far start to the deepest
+    load) as traced (`traced`: its states and unit tangents) on `surface`."""
     z = curve.delta - curve.p / k
     stable = spring_stable(curve, traced.tangents, k)
     order = np.arange(len(curve))
     approach, z_approach, jumps_in, z_in = _walk(surface, traced, curve, z, stable, order, k)
     retraction, z_retraction, jumps_out, z_out = _walk(surface, traced, curve, z, stable,
                                                        order[::-1], k)
-    return (path_from_rows(approach), path_from_rows(retraction), jumps_in, jumps_out,
-            z_approach, z_retraction, z_in, z_out)
+    return LoadLinePaths(path_from_rows(approach), path_from_rows(retraction), jumps_in,
+                         jumps_out, z_approach, z_retraction, z_in, z_out)

@@ -215,7 +215,7 @@ class _Near:
         fold = self.window(k, WINDOW, beyond_fold)[1]
         if fold is None:
             raise NotNear(f"the finer discretisation does not fold near δ = {jump.delta:.6g}")
-        delta, before = fold
+        delta, before = fold.delta, fold
         after = dict(p_after=jump.p_after, a_c_after=jump.a_c_after, x_after=jump.x_after)
         landing = self.index(jump.delta, jump.p_after) if land else None
         if landing is not None:
@@ -225,7 +225,7 @@ class _Near:
             self._count(iterations)
             after = dict(p_after=surface.force(w, delta), a_c_after=surface.contact(w, delta)[1],
                          x_after=surface.centre_gap(w, delta))
-        return Jump(delta=delta, x_before=before["x"], p_before=before["p"], **after), before
+        return Jump(delta=delta, x_before=before.x, p_before=before.p, **after), before
 
     def most_tensile(self, path, *jumps):
         """(P̄, δ̄o, ā_c) at the most tensile point of `path` on the finer discretisation: the
@@ -241,7 +241,7 @@ class _Near:
                 jump, fold = fine
                 if p == coarse.p_after:
                     return jump.p_after, jump.delta, jump.a_c_after
-                return fold["p"], jump.delta, fold["a_c"]
+                return fold.p, jump.delta, fold.a_c
         k = self.index(d, p)
         if k is None:
             raise NotNear(f"the most tensile point at δ = {d:.6g} is not a traced point")
@@ -268,7 +268,7 @@ class _Near:
             if jump_in is None or approach.delta[i] != jump_in.delta or fine_in is None:
                 raise NotNear("contact forms by a jump the finer discretisation does not make")
             fine, fold = fine_in
-            if not (fold["x"] > 1.0 and fine.x_after <= 1.0 + JUMP_CONTACT):
+            if not (fold.x > 1.0 and fine.x_after <= 1.0 + JUMP_CONTACT):
                 raise NotNear("on the finer discretisation contact does not form by the jump")
             return fine.delta
         k = self.index(approach.delta[i], approach.p[i])

@@ -1,9 +1,35 @@
 """What a path-following run returns: both paths with their jumps, the states behind them, and
 the ledger of what moving between grids changed."""
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+
+import numpy as np
 
 from ..curves.curve import Curve
+
+
+@dataclass(frozen=True)
+class PathPoint:
+    """A point of a path under δ̄o (or a spring's) control: δ̄o, x̄o, P̄, Ā, ā_c (`reading.COLUMNS`)
+    and the path's `branch` (the jumps made before it). A fold of δ̄o, where the path jumps, is
+    one too (its branch set where the path takes it, `on`)."""
+
+    delta: float
+    x: float
+    p: float
+    area: float
+    a_c: float
+    branch: int = 0
+
+    def on(self, branch):
+        """This point on the path's `branch`."""
+        return replace(self, branch=branch)
+
+
+def disc_area(radius):
+    """Ā of a contact disc of radius ā_c (0 out of contact): a fold's area, where only ā_c is
+    read off the curve."""
+    return 0.0 if radius <= 0.0 else np.pi * radius**2
 
 
 @dataclass

@@ -10,6 +10,7 @@ from ..curves.curve import curve_from_columns
 from ..curves.events import parabola_vertex
 from ..plumbing.errors import ContinuationError
 from .continuation import Linearisation, correct
+from .paths import PathPoint, disc_area
 
 COLUMNS = ("delta", "x", "p", "area", "a_c")
 #: Newton iterations per point of `root_along` (12 were needed at μ = 10 from a linear blend).
@@ -122,9 +123,9 @@ def equilibrium_curve(trace):
 
 
 def fold_by_parabola(curve, i, j, descending):
-    """Values at the extremum of δ̄o between the stable sample i and the unstable sample j (a
-    minimum when δ̄o was `descending`), from parabolas in arc length through the three samples
-    centred on the more extreme of the two."""
+    """The `PathPoint` at the extremum of δ̄o between the stable sample i and the unstable sample
+    j (a minimum when δ̄o was `descending`), from parabolas in arc length through the three
+    samples centred on the more extreme of the two; its area the disc's (`disc_area`)."""
     pair = np.array(sorted((i, j)))
     extreme = pair[np.argmin(curve.delta[pair] if descending else -curve.delta[pair])]
     centre = int(np.clip(extreme, 1, len(curve) - 2))
@@ -134,15 +135,15 @@ def fold_by_parabola(curve, i, j, descending):
     s_star, delta = parabola_vertex(arc, curve.delta[three])
     values = {c: float(np.polyval(np.polyfit(arc, getattr(curve, c)[three], 2), s_star))
               for c in ("x", "p", "a_c")}
-    return float(delta), values
+    return PathPoint(delta=float(delta), area=disc_area(values["a_c"]), **values)
 
 
 def point_row(source, i, branch):
-    """Row of a path: the COLUMNS of point i of `source` (a Trace or a Curve) and `branch`."""
-    return {c: getattr(source, c)[i] for c in COLUMNS} | {"branch": branch}
+    """The `PathPoint` of point i of `source` (a Trace or a Curve) on `branch`."""
+    return PathPoint(*(getattr(source, c)[i] for c in COLUMNS), branch)
 
 
 def path_from_rows(rows):
-    """A displacement-control path (`Curve`, all stable) from dicts with COLUMNS and 'branch'."""
-    columns = {c: [r[c] for r in rows] for c in (*COLUMNS, "branch")}
+    """A displacement-control path (`Curve`, all stable) from its `PathPoint`s."""
+    columns = {c: [getattr(r, c) for r in rows] for c in (*COLUMNS, "branch")}
     return curve_from_columns(**columns, stable=np.ones(len(rows), dtype=bool))

@@ -19,6 +19,7 @@ from scipy.optimize import brentq
 from ..plumbing.errors import ContinuationError
 from .continuation import DELTA_ROW, Trace, TraceSettings, correct
 from .held_tip import Held, along, as_held, contact_radius_rate, held, held_from, is_stable
+from .paths import PathPoint, disc_area
 
 #: Tip steps in bands: the first, growth after ≤ EASY Newton iterations, the shortest (then
 #: `follow` goes on) and longest (beyond, the P̄ and ā_c limits hold them). docs/methods.md §5.
@@ -44,11 +45,11 @@ XTOL = 1e-9
 
 class TipPath(NamedTuple):
     """Result of `follow_tip`: the stable states traced (a `Trace`, force extremum included),
-    the fold (δ̄o, values there) or None, the first state past it (on `surface`) or None, the
+    the fold (a `PathPoint`) or None, the first state past it (on `surface`) or None, the
     surface of the last state, and the last stable `Held` (where the path handed over)."""
 
     trace: Trace
-    fold: tuple | None
+    fold: PathPoint | None
     beyond: np.ndarray | None
     surface: object
     last: Held
@@ -288,6 +289,6 @@ def _fold(grids, moves, trace, last, beyond, direction, tol):
         _record_fold_elsewhere(grids, moves, fold.delta, last, beyond, direction, tol)
     _insert_roots(grids, trace, last, fold, direction, tol)
     radius = fold.contact[1]
-    values = dict(x=fold.surface.centre_gap(fold.w, fold.delta), p=fold.force, a_c=radius,
-                  area=0.0 if radius <= 0.0 else np.pi * radius**2)
-    return TipPath(trace, (fold.delta, values), beyond.w, beyond.surface, last)
+    point = PathPoint(fold.delta, fold.surface.centre_gap(fold.w, fold.delta), fold.force,
+                      disc_area(radius), radius)
+    return TipPath(trace, point, beyond.w, beyond.surface, last)

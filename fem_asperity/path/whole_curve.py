@@ -11,7 +11,7 @@ import numpy as np
 from ..curves.events import Jump
 from ..plumbing.errors import ContinuationError
 from .continuation import correct, trace
-from .paths import Paths
+from .paths import PathPoint, Paths
 from .reading import (
     equilibrium_curve,
     fold_by_parabola,
@@ -42,7 +42,7 @@ def _landing(surface, trace, curve, order, start, delta):
 
 def state_at(surface, trace, a, b, t, delta):
     """The equilibrium at δ̄o = `delta` by Newton from the state interpolated at fraction `t`
-    between trace points a and b, as a row of COLUMNS; None if Newton does not converge."""
+    between trace points a and b, as a `PathPoint`; None if Newton does not converge."""
     guess = (1.0 - t) * trace.states[a] + t * trace.states[b]
     solved = correct(surface, guess, delta, np.array([0.0, 1.0, 0.0]),
                      np.array([0.0, delta, 0.0]), 0.0)
@@ -50,8 +50,7 @@ def state_at(surface, trace, a, b, t, delta):
         return None
     w, d, _, _ = solved
     area, radius = surface.contact(w, d)
-    return dict(delta=d, x=surface.centre_gap(w, d), p=surface.force(w, d), area=area,
-                a_c=radius)
+    return PathPoint(d, surface.centre_gap(w, d), surface.force(w, d), area, radius)
 
 
 def walk(surface, trace, curve, order):
@@ -63,14 +62,14 @@ def walk(surface, trace, curve, order):
         rows.append(point_row(curve, i, branch))
         if pos + 1 < len(order) and not curve.stable[order[pos + 1]]:
             descending = pos > 0 and curve.delta[i] < curve.delta[order[pos - 1]]
-            delta, before = fold_by_parabola(curve, i, order[pos + 1], descending)
-            before["area"] = 0.0 if before["a_c"] <= 0.0 else np.pi * before["a_c"] ** 2
-            rows.append(dict(delta=delta, **before, branch=branch))
+            before = fold_by_parabola(curve, i, order[pos + 1], descending)
+            delta = before.delta
+            rows.append(before.on(branch))
             pos, after = _landing(surface, trace, curve, order, pos + 1, delta)
             branch += 1
-            rows.append(after | {"branch": branch})
-            jumps.append(Jump(delta=delta, x_before=before["x"], p_before=before["p"],
-                              p_after=after["p"], a_c_after=after["a_c"], x_after=after["x"]))
+            rows.append(after.on(branch))
+            jumps.append(Jump(delta=delta, x_before=before.x, p_before=before.p,
+                              p_after=after.p, a_c_after=after.a_c, x_after=after.x))
         pos += 1
     return path_from_rows(rows), jumps
 

@@ -67,10 +67,11 @@ def solve_traced(mu, disc, *, solid, radius_ratio, unstable_branch, spring_const
                                                      paths.jumps_in, paths.jumps_out)
         curve, traced = paths.equilibrium, paths.traced
         if spring_constant is not None:
-            (approach, retraction, jumps_in, jumps_out, *_, z_in, z_out) = load_line_paths(
-                grids.start, traced, curve, spring_constant)
-            z_jumps = {"z_jump_in": z_in[0] if z_in else None,
-                       "z_jump_out": z_out[-1] if z_out else None}
+            spring = load_line_paths(grids.start, traced, curve, spring_constant)
+            approach, retraction = spring.approach, spring.retraction
+            jumps_in, jumps_out = spring.jumps_in, spring.jumps_out
+            z_jumps = {"z_jump_in": spring.z_in[0] if spring.z_in else None,
+                       "z_jump_out": spring.z_out[-1] if spring.z_out else None}
     if unstable_branch and spring_constant is None:  # stability changes along the whole curve
         folds = int(curve.branch.max())
     else:
