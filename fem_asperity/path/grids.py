@@ -318,8 +318,8 @@ class EdgeGrids:
     def summary(self, moves):
         """How many grids followed the edge, their largest size, and from the path's `moves`
         (`paths.GridMoves`) the largest move's |ΔP̄| and |Δā_c| and the largest |Δδ̄o| of a fold
-        found again elsewhere."""
-        return (f"; {self.regrids} grids followed the contact edge (at most "
+        found again elsewhere: a clause of the curve's message (`result.noted`)."""
+        return (f"{self.regrids} grids followed the contact edge (at most "
                 f"{self.largest_nodes} nodes), moving a state to a new grid changed P̄ by at "
                 f"most {moves.force:.1e} and ā_c by at most {moves.radius:.1e}, and a fold's "
                 f"δ̄o by at most {moves.fold:.1e}")

@@ -22,7 +22,7 @@ from ..path.whole_curve import whole_curve_paths
 from ..plumbing.errors import InputError
 from ..solids.fe import Solid
 from .presets import MU_TRACKING, discretisation, sizing_mu
-from .result import PHYSICAL_FOLDS, CurveResult, Model, worst_status
+from .result import PHYSICAL_FOLDS, CurveResult, Model, noted, worst_status
 
 #: BLAS threads while a curve is traced: its dense factorisations ran slower with two on two
 #: cores, and the second core serves the error estimate. Not pinned by a test.
@@ -77,11 +77,11 @@ def solve_traced(mu, disc, *, solid, radius_ratio, unstable_branch, spring_const
     else:
         folds = len(jumps_in) + len(jumps_out)
     moves = paths.moves if grids.follows_edge else None  # none on one grid or mesh
-    message = f"{folds} folds of the equilibrium curve" + grids.summary(moves)
     sized_for = sizing_mu(mu, solid)
+    message = noted(f"{folds} folds of the equilibrium curve", grids.summary(moves))
     if sized_for != mu:
-        message += (f"; elements sized for the layer's Tabor parameter {sized_for:.4g}, the more "
-                    f"compliant material")
+        message = noted(message, f"elements sized for the layer's Tabor parameter "
+                                 f"{sized_for:.4g}, the more compliant material")
     status = "ok"
     if folds > PHYSICAL_FOLDS:
         status = "ripples"
@@ -141,17 +141,18 @@ def solve_refining(mu, disc, *, progress=None, **options):
         if flaw(result) is None:
             why = ("more folds than a jump-in and a jump-out (ripple)" if first == "ripples"
                    else "no jump-in although mu is above the onset")
-            note = (f"; at '{disc.name}' {why}: solved again on a discretisation refined "
+            note = (f"at '{disc.name}' {why}: solved again on a discretisation refined "
                     f"{level} time(s)")
-            return replace(result, message=result.message + note, wall_s=wall), solved_on, traced
+            refined = replace(result, message=noted(result.message, note), wall_s=wall)
+            return refined, solved_on, traced
     if flaw(result) == "ripples":
-        note = (f"; still ripples after {REFINEMENTS} refinements: the jump-in is the first fold "
+        note = (f"still ripples after {REFINEMENTS} refinements: the jump-in is the first fold "
                 f"of the approach and the jump-out the last of the retraction; try --tolerance")
     else:
-        note = (f"; no jump-in although mu is above the onset, also refined {REFINEMENTS} "
+        note = (f"no jump-in although mu is above the onset, also refined {REFINEMENTS} "
                 f"times: try --tolerance or a finer accuracy")
     return replace(result, status=worst_status(result.status, flaw(result)),
-                   message=result.message + note, wall_s=wall), solved_on, traced
+                   message=noted(result.message, note), wall_s=wall), solved_on, traced
 
 
 def discretisation_for(mu, accuracy, *, method, p_end, options, track_edge=None):

@@ -22,7 +22,7 @@ from ..path.near_events import events_near
 from ..plumbing.errors import ContinuationError, InputError
 from .discretised import PATH_BLAS_THREADS, discretisation_for, solve_discretised, solve_refining
 from .presets import ESTIMATE_BY
-from .result import CurveResult, worst_status
+from .result import CurveResult, noted, worst_status
 
 #: Progress shown until a solve and its error estimate have both ended.
 ALMOST_DONE = 0.99
@@ -68,13 +68,13 @@ def difference_estimate(a, disc, b, partner_disc):
 
 
 def _one_sided(a, b, other_named="its finer estimate discretisation"):
-    """A message naming the estimated events (records `a` of the solve, `b` of the other solve,
+    """The clause naming the estimated events (records `a` of the solve, `b` of the other solve,
     `other_named`) that one of the two has and the other not (a jump one discretisation finds
-    and the other misses): their estimate is None."""
+    and the other misses): their estimate is None. "" where there are none."""
     keys = [k for k in ESTIMATED if (a[k] is None) != (b[k] is None)]
     if not keys:
         return ""
-    return (f"; {', '.join(keys)} found by only one of the solve and {other_named} (no "
+    return (f"{', '.join(keys)} found by only one of the solve and {other_named} (no "
             f"estimate for them): try a finer accuracy")
 
 
@@ -98,19 +98,20 @@ def estimate_kind(estimate_by, method, solid):
 @dataclass(frozen=True)
 class _Estimated:
     """A curve (`result`) and its error estimate as one strategy made it: the `estimate` (None
-    where it failed), the clause the curve's message gains (`note`) and its `status` with it."""
+    where it failed), the clauses the curve's message gains (`notes`, `result.noted`) and its
+    `status` with it."""
 
     result: CurveResult
     estimate: dict | None
-    note: str
+    notes: tuple
     status: str
 
     @classmethod
     def failed(cls, result, exc, what="its finer solve", hint=""):
-        """The curve whose estimate's solve (`what`) failed with `exc`; the note ends with
-        `hint` (what to try instead)."""
-        note = f"; no error estimate: {what} failed ({type(exc).__name__}: {exc}){hint}"
-        return cls(result, None, note, worst_status(result.status, "no_estimate"))
+        """The curve whose estimate's solve (`what`) failed with `exc`; then the clause `hint`
+        (what to try instead)."""
+        note = f"no error estimate: {what} failed ({type(exc).__name__}: {exc})"
+        return cls(result, None, (note, hint), worst_status(result.status, "no_estimate"))
 
 
 def with_estimate(mu, disc, options, progress, by):
@@ -135,7 +136,8 @@ def with_estimate(mu, disc, options, progress, by):
     if progress:
         progress(1.0)
     return replace(result, error_estimate=estimate_plus(estimate, floor), estimated_by=by,
-                   estimate_floor=floor, status=made.status, message=result.message + made.note,
+                   estimate_floor=floor, status=made.status,
+                   message=noted(result.message, *made.notes),
                    wall_s=time.perf_counter() - start)
 
 
@@ -174,25 +176,25 @@ def _estimated_near_events(mu, disc, options, progress, pool):
                            result.approach, result.retraction, result.events.jump_in,
                            result.events.jump_out, progress=estimate_shown)
         a = result.events.records()
-        note = _missed(near["missed"]) + (
-            f"; error estimate from the finer discretisation traced near each event "
-            f"({near['windows']} windows, {near['newton_iterations']} Newton iterations)")
-        return _Estimated(result, difference_estimate(a, solved_on, near, partner_on), note,
+        notes = (*_missed(near["missed"]),
+                 f"error estimate from the finer discretisation traced near each event "
+                 f"({near['windows']} windows, {near['newton_iterations']} Newton iterations)")
+        return _Estimated(result, difference_estimate(a, solved_on, near, partner_on), notes,
                           result.status)
     except Exception as exc:  # the estimate never costs the result: whatever stopped it
         return _Estimated.failed(result, exc)
 
 
 def _missed(missed):
-    """A message naming the events (no estimate for them) the finer discretisation has none of
-    near the curve's, with why (`path.near_events`: a jump it does not make, a branch it folds
-    on, a window it could not follow)."""
+    """Clauses naming the events (no estimate for them) the finer discretisation has none of near
+    the curve's, with why (`path.near_events`: a jump it does not make, a branch it folds on, a
+    window it could not follow)."""
     reasons = {}
     for key, reason in missed.items():
         reasons.setdefault(reason, []).append(key)
-    return "".join(f"; no error estimate for {', '.join(keys)}: near the curve's, the finer "
-                   f"discretisation has none ({reason}); try a finer accuracy"
-                   for reason, keys in reasons.items())
+    return [f"no error estimate for {', '.join(keys)}: near the curve's, the finer "
+            f"discretisation has none ({reason}); try a finer accuracy"
+            for reason, keys in reasons.items()]
 
 
 @contextmanager
@@ -230,7 +232,7 @@ def _estimated_by_whole_solve(mu, disc, options, progress, pool):
                 raise ContinuationError(f"it rippled ({partner.folds} folds)")
             a, b = result.events.records(), partner.events.records()
             estimate = difference_estimate(a, solved_on, b, partner_on)
-            return _Estimated(result, estimate, _one_sided(a, b), result.status)
+            return _Estimated(result, estimate, (_one_sided(a, b),), result.status)
         except Exception as exc:  # the estimate never costs the result: whatever stopped it
             return _Estimated.failed(result, exc)
 
@@ -249,15 +251,15 @@ def _estimated_by_bem(mu, disc, options, progress, pool):
                               result.status)
         except Exception as exc:  # the estimate never costs the result: whatever stopped it
             return _Estimated.failed(result, exc, "the boundary integral's curve",
-                                     hint="; estimate_by='finer' estimates the FE from its own "
+                                     hint="estimate_by='finer' estimates the FE from its own "
                                           "finer mesh instead")
 
 
 def _estimate_against_bem(result, partner):
-    """(estimate, note) of the events of the FE `result` from the boundary integral's `partner`
-    curve: per event DIFFERENCE_FACTOR |FE − BEM| plus the BEM's estimate; None where either
-    lacks the event or the BEM's estimate does. A partner that ripples, misses its jump or has
-    no estimate gives none (`ContinuationError`)."""
+    """(estimate, the message's clauses) of the events of the FE `result` from the boundary
+    integral's `partner` curve: per event DIFFERENCE_FACTOR |FE − BEM| plus the BEM's estimate;
+    None where either lacks the event or the BEM's estimate does. A partner that ripples, misses
+    its jump or has no estimate gives none (`ContinuationError`)."""
     if partner.status != "ok" or partner.error_estimate is None:
         raise ContinuationError(f"the boundary integral's curve has status {partner.status!r} "
                                 f"({partner.message})")
@@ -267,14 +269,13 @@ def _estimate_against_bem(result, partner):
                 for k in ESTIMATED}
     unestimated = [k for k in ESTIMATED
                    if None not in (a[k], b[k]) and partner.error_estimate[k] is None]
-    note = _one_sided(a, b, other_named="the boundary integral's curve")
-    if unestimated:
-        note += (f"; no error estimate for {', '.join(unestimated)}: the boundary integral's "
-                 f"own estimate has none")
-    note += (f"; error estimate against the boundary integral (BEM '{partner.accuracy}', "
+    notes = (_one_sided(a, b, other_named="the boundary integral's curve"),
+             f"no error estimate for {', '.join(unestimated)}: the boundary integral's own "
+             f"estimate has none" if unestimated else "",
+             f"error estimate against the boundary integral (BEM '{partner.accuracy}', "
              f"{partner.points} points, {partner.wall_s:.1f} s alongside): "
              f"{DIFFERENCE_FACTOR:g} |FE - BEM| plus the BEM's own estimate per event")
-    return estimate, note
+    return estimate, notes
 
 
 class _Stopped(Exception):

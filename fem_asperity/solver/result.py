@@ -42,6 +42,12 @@ def worst_status(*statuses):
     return max(statuses, key=STATUSES.index)
 
 
+def noted(message, *clauses):
+    """A curve's `message` with each non-empty one of `clauses` appended after "; " (a message is
+    one statement, then a clause per thing that changed or qualifies the result)."""
+    return "; ".join((message, *(clause for clause in clauses if clause)))
+
+
 @dataclass
 class Model:
     """The solved model behind a curve (kept for field output): the elastic solid, the LJ

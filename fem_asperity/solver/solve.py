@@ -19,7 +19,7 @@ from .estimate import (
     traction_tail,
     with_estimate,
 )
-from .result import worst_status
+from .result import noted, worst_status
 
 #: Tabor parameters solved for: the rigid limit to the largest μ that finishes at `draft` in
 #: minutes (benchmarks/results/extremes.md). test_cli's bad-input test and test_bem_curve.
@@ -163,14 +163,14 @@ def solve_to_tolerance(mu, tolerance, *, method="fem", solid=Solid(), radius_rat
                            previous_disc)
         worst = max(change[key] / abs(getattr(result.events, key)) for key in TOLERANCE_KEYS)
         done = worst <= tolerance
-        note = (f"; tolerance {tolerance:g} on P̄max, P̄off " + ("met" if done else "NOT met")
+        note = (f"tolerance {tolerance:g} on P̄max, P̄off " + ("met" if done else "NOT met")
                 + f" after {k + 1} levels (relative change {worst:.2g}, h = {disc.h_surface:.4g})")
         status = result.status if done else worst_status(result.status, "tolerance_not_met")
         floor = traction_tail(result.events, disc.traction_radius)
         result = replace(result, accuracy=f"tolerance {tolerance:g}",
                          error_estimate=estimate_plus(change, floor), estimated_by="tolerance",
                          estimate_floor=floor, wall_s=wall + result.wall_s, status=status,
-                         message=result.message + note)
+                         message=noted(result.message, note))
         if done:
             break
         previous, previous_disc = result, disc
