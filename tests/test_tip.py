@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from fem_asperity.path.continuation import Trace, correct
-from fem_asperity.path.held_tip import _bordered, _constraint, held
+from fem_asperity.path.held_tip import HeldSystem, _constraint, held
 from fem_asperity.path.landing import land
 from fem_asperity.path.surface import LJSurface
 from fem_asperity.path.tip import _insert_roots
@@ -71,7 +71,8 @@ def test_an_indefinite_prediction_is_solved_through_the_pins_penalty(adhered):
     slope = surface.sensitivities(predicted, state.delta)[2]
     assert np.min(np.linalg.eigvalsh(surface.tangent_matrix(slope, np.float64))) < 0.0
     pin, c, _ = _constraint(surface, predicted, state.delta, tip)
-    system, g_delta, _ = _bordered(surface, predicted, state.delta, pin)
+    system = HeldSystem(surface, predicted, state.delta, pin)
+    g_delta = system.g_delta
     assert system._penalty > 0.0 and system._lu is None
     n = pin.size
     dense = np.zeros((n + 1, n + 1))

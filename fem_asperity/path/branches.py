@@ -10,6 +10,7 @@ factorisations and short steps, much of the cost of the whole curve) are never t
 """
 
 from functools import partial
+from typing import NamedTuple
 
 import numpy as np
 
@@ -49,12 +50,34 @@ APPROACH_SHARE = 0.6
 RETRACTION_SHOWN_MAX = 0.98
 
 
+class Branch(NamedTuple):
+    """A stable branch followed (`follow_branch`): its `trace`, the `fold` it ends in (a
+    `PathPoint`, None where `until` was met), the state `beyond` the fold (None where there is
+    none), the `surface` of its end and, where a move to a new grid landed elsewhere, the
+    (surface, w) it `landed` on (else None)."""
+
+    trace: Trace
+    fold: PathPoint | None
+    beyond: np.ndarray | None
+    surface: object
+    landed: tuple | None
+
+
+class _Piece(NamedTuple):
+    """A branch on one grid (`_piece`): its `trace`, `fold` (or None), the first state `beyond`
+    the fold and that state's δ̄o."""
+
+    trace: Trace
+    fold: PathPoint | None
+    beyond: np.ndarray | None
+    beyond_delta: float | None
+
+
 def follow_branch(grids, moves, surface, w, delta, heading, settings, until, on_point):
-    """(stable Trace from (w, δ) on `surface`, fold, state past the fold, surface at the end,
-    landing): `_piece`s of the branch, moved to a new grid (`grids.regrid`, see `grids`) each
-    time the contact edge leaves the current one's band; on a fixed grid, one piece. Where a
-    move lands elsewhere (REGRID_JUMP) the branch ends in a fold there, landing = (surface, w)
-    of the jump; else landing is None. A branch in contact on grids that follow the edge is
+    """The `Branch` from (w, δ) on `surface`: `_piece`s of the branch, moved to a new grid
+    (`grids.regrid`, see `grids`) each time the contact edge leaves the current one's band; on a
+    fixed grid, one piece. Where a move lands elsewhere (REGRID_JUMP) the branch ends in a fold
+    there and has `landed`. A branch in contact on grids that follow the edge is
     followed in its crack tip's radius first (`tip.follow_tip`), then, where that hands over,
     as any branch. What moving to new grids changed goes into `moves` (a `GridMoves`)."""
     merged = Trace()
@@ -64,7 +87,7 @@ def follow_branch(grids, moves, surface, w, delta, heading, settings, until, on_
                           on_point=on_point)
         merged.extend(path.trace)
         if path.fold is not None or (path.last is not None and until(path.trace)):
-            return merged, path.fold, path.beyond, path.surface, None
+            return Branch(merged, path.fold, path.beyond, path.surface, None)
         if path.last is not None:  # go on from its last state, which `follow` records again
             surface, w, delta = path.last.surface, path.last.w, path.last.delta
             merged.drop_last()
@@ -77,7 +100,7 @@ def follow_branch(grids, moves, surface, w, delta, heading, settings, until, on_
                                   (beyond, beyond_delta), settings.tol)
         if fold is not None or until(traced):
             merged.extend(traced)
-            return merged, fold, beyond, surface, None
+            return Branch(merged, fold, beyond, surface, None)
         w, delta = traced.states[-1], traced.delta[-1]
         before = point_row(traced, -1, 0)
         traced.drop_last()  # solved again on the next grid
@@ -86,7 +109,7 @@ def follow_branch(grids, moves, surface, w, delta, heading, settings, until, on_
         merged.newton_iterations += its
         change = abs(surface.force(w, delta) - before.p)
         if change > REGRID_JUMP:
-            return merged, before, None, surface, (surface, w)
+            return Branch(merged, before, None, surface, (surface, w))
         moves.record_move(change, abs(surface.contact(w, delta)[1] - before.a_c))
 
 
@@ -96,8 +119,8 @@ def _done_or_off_grid(until, grids, surface, tr):
 
 
 def _piece(surface, w, delta, heading, settings, until, on_point, admissible=None):
-    """(stable Trace from (w, δ) with its force extrema refined, fold, state past the fold and
-    its δ̄o): the fold (a `PathPoint`) at the branch's end, or None if `until` was met.
+    """The `_Piece` from (w, δ): its stable Trace with its force extrema refined, the fold (a
+    `PathPoint`) at the branch's end, or None if `until` was met.
 
     The fold is where dδ̄o/ds = 0 between the last stable and the first unstable point
     (`reading.root_along`), or one interval earlier (`reading.ADJACENT`: the last point
@@ -130,7 +153,7 @@ def _piece(surface, w, delta, heading, settings, until, on_point, admissible=Non
                              disc_area(traced.a_c[0]), traced.a_c[0])
         traced.drop_last()
     refine_force_extrema(surface, traced)
-    return traced, fold, beyond, beyond_delta
+    return _Piece(traced, fold, beyond, beyond_delta)
 
 
 def land_jump(grids, surface, fold, beyond, settings, counter, landed=None, *,

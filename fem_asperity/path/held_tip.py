@@ -59,23 +59,23 @@ class Held(NamedTuple):
         return direction * self.rates / np.linalg.norm(self.rates)
 
 
-def _bordered(surface, w, delta, pin):
+class HeldSystem(BorderedSystem):
     """The Newton matrix [[∂g/∂w, ∂g/∂δ], [−eᵀ, 1]] of a held state (e: the pin's weights on its
     two nodes), factorised; where ∂g/∂w is not positive definite (a prediction, or past the
     fold) with the pin's penalty (`newton.PINNED`), positive definite where the pin holds the
-    tip's unstable mode. Returns (the `BorderedSystem`, ∂g/∂δ, ∂P̄/∂δ)."""
-    g_delta, p_delta, slope = surface.sensitivities(w, delta)
-    system = BorderedSystem(surface, slope, g_delta, np.append(-pin, 1.0),
-                            factorisations=(SINGLE, PINNED), lu=np.float64, stability=False)
-    return system, g_delta, p_delta
+    tip's unstable mode. Keeps ∂g/∂δ (`g_delta`) and ∂P̄/∂δ (`p_delta`) for `rates`."""
 
+    def __init__(self, surface, w, delta, pin):
+        self.g_delta, self.p_delta, slope = surface.sensitivities(w, delta)
+        super().__init__(surface, slope, self.g_delta, np.append(-pin, 1.0),
+                         factorisations=(SINGLE, PINNED), lu=np.float64, stability=False)
 
-def _rates(surface, bordered, dc_dtip):
-    """d(x̄o, δ̄o, P̄)/d(tip) along the held equilibria, from `_bordered`'s result and the
-    constraint's own rate dc_dtip."""
-    system, g_delta, p_delta = bordered
-    dw, dd = system.solve(np.append(np.zeros(system.n), -dc_dtip))
-    return np.array([dd - dw[0], dd, -(g_delta @ dw) / surface.load_factor + p_delta * dd])
+    def rates(self, dc_dtip):
+        """d(x̄o, δ̄o, P̄)/d(tip) along the held equilibria, from the constraint's own rate
+        dc_dtip."""
+        dw, dd = self.solve(np.append(np.zeros(self.n), -dc_dtip))
+        return np.array([dd - dw[0], dd,
+                         -(self.g_delta @ dw) / self._surface.load_factor + self.p_delta * dd])
 
 
 def _constraint(surface, w, delta, tip):
@@ -97,13 +97,12 @@ def held(surface, w, delta, tip, *, tol):
     for iteration in range(1, MAX_NEWTON + 1):
         g = surface.residual(w, delta)
         pin, c, dc_dtip = _constraint(surface, w, delta, tip)
-        bordered = _bordered(surface, w, delta, pin)
-        dw, dd = bordered[0].solve(-np.append(g, c))
+        system = HeldSystem(surface, w, delta, pin)
+        dw, dd = system.solve(-np.append(g, c))
         if not (np.isfinite(dd) and np.all(np.isfinite(dw))):
             return None
         if abs(c) <= tol and converged(g, np.append(dw, dd), w, scale, tol):
-            return Held(surface, w + dw, delta + dd, tip, _rates(surface, bordered, dc_dtip),
-                        iteration)
+            return Held(surface, w + dw, delta + dd, tip, system.rates(dc_dtip), iteration)
         alpha = gap_keeping_step(surface.gap(w, delta), dd - surface.interp @ dw)
         w, delta = w + alpha * dw, delta + alpha * dd
     return None
@@ -116,7 +115,7 @@ def as_held(surface, w, delta):
     found no P̄max near it)."""
     tip = surface.crack_tip(w, delta)
     pin, _, dc_dtip = _constraint(surface, w, delta, tip)
-    rates = _rates(surface, _bordered(surface, w, delta, pin), dc_dtip)
+    rates = HeldSystem(surface, w, delta, pin).rates(dc_dtip)
     return Held(surface, w, float(delta), tip, rates, 0)
 
 

@@ -186,8 +186,9 @@ class _Near:
                                                                  and until(tr))
 
         # the moves between the finer grids are not read: the estimate is the events' change
-        branch, fold = follow_branch(self.grids, GridMoves(), surface, w, delta, heading,
-                                     self.settings, done, None)[:2]
+        followed = follow_branch(self.grids, GridMoves(), surface, w, delta, heading,
+                                 self.settings, done, None)
+        branch, fold = followed.trace, followed.fold
         self._count(branch.newton_iterations, windows=1)
         if until is None:
             self._windows[key] = branch, fold
