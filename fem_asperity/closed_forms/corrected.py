@@ -38,13 +38,11 @@ S_MIN = (0.75 * np.sqrt(2.0 * np.pi)) ** (2.0 / 3.0)
 U_MIN = S_MIN**2 - np.sqrt(2.0 * np.pi * S_MIN)
 #: Where the JKR δ-term turns (d/ds[s² − √(2πs)] = 0): the contact branch is monotone above it.
 S_TURN = (np.sqrt(2.0 * np.pi) / 4.0) ** (2.0 / 3.0)
-#: Samples of s per law: geometric in s − S_TURN from 1e-6 to S_SPAN (about 390 per decade); the GW
-#: integrals read P̄(δ̄o) off them linearly (test_corrected_law.py checks the curve against a
-#: root find of the parametric form to 1e-4 max(1, |P̄|)).
+#: Samples of s per law, geometric in s − S_TURN up to S_SPAN (methods.md §13);
+#: test_corrected_law.py checks the sampled curve against a root find to 1e-4 max(1, |P̄|).
 SAMPLES, S_SPAN = 4000, 2e4
-#: The onset of jump-in measured by `python -m fem_asperity onset` (BEM `default`, bracket
-#: [0.69666, 0.69866], as the shipped table of solved laws has it): from it on the law's
-#: approach jumps in (`CorrectedLawAtMu.events`). test_bem_curve.py pins the onset in 0.69-0.70.
+#: The measured onset of jump-in, the middle of the shipped table's bracket (methods.md §13);
+#: test_bem_curve.py pins the onset in 0.69-0.70.
 MU_JUMP = 0.69766
 #: The μ of the shipped table of solved laws (`gw.law_table`), to which the constants were
 #: fitted and against which the law's errors are measured; outside, its error is not known.

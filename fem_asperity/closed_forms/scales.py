@@ -12,9 +12,8 @@ import numpy as np
 from ..plumbing.checks import derjaguin, in_range, poisson, positive
 from ..plumbing.errors import InputError
 
-#: Supported ranges of the physical inputs (SI): wide enough for any solid and any LJ system,
-#: narrow enough that μ and the natural scales stay finite in double precision (E = 1e300
-#: overflowed, 1e-300 divided by zero). test_cli's bad-input test pins them.
+#: Supported ranges of the physical inputs (SI): any solid and LJ system, μ and the scales finite
+#: in double precision (methods.md §13); test_cli's bad-input test pins them.
 MODULUS_RANGE = (1e-3, 1e15)  # Pa
 ADHESION_RANGE = (1e-9, 1e3)  # J/m^2
 LENGTH_RANGE = (1e-13, 1e2)  # m, eps and R

@@ -37,12 +37,10 @@ _DOWN, _UP = np.array([0.0, -1.0, 0.0]), np.array([0.0, 1.0, 0.0])
 #: Most jumps one path may make (ripple of a far too coarse mesh, or a landing that loops). Not
 #: pinned by a test.
 MAX_JUMPS = 200
-#: A state moved to a new grid whose force then changes by more than this was at a fold of the
-#: new grid's curve: its landing is a jump (an ordinary move changes P̄ far less; the largest is
-#: in the curve's message, `grids.EdgeGrids.summary`). Not pinned by a test.
+#: A move to a new grid that changes P̄ by more than this landed past a fold there: a jump
+#: (methods.md §13). Not pinned by a test.
 REGRID_JUMP = 1e-3
-#: Share of the progress bar given to the approach: at large μ the retraction's peel traces about
-#: as many points as the approach (μ = 7, BEM draft: 124 and 182), at small μ next to none.
+#: Share of the progress bar given to the approach (methods.md §13);
 #: test_bem_curve.py::test_progress_rises_to_one_at_the_end_only.
 APPROACH_SHARE = 0.6
 #: The retraction's progress stops here short of the end: the peel's remaining contact radius

@@ -18,9 +18,8 @@ from .elimination import relax_edge
 from .newton import BorderedSystem, edge_block
 from .surface import gap_keeping_step
 
-#: Newton's line search: a step is accepted once the merit (relative residual + constraint)
-#: falls by ARMIJO × its fraction (the usual sufficient decrease), else halved, at most
-#: MAX_HALVINGS times (2^-20 of a step is below any useful move). Not pinned by a test.
+#: Newton's line search: sufficient decrease of the merit by ARMIJO × the step's fraction, at
+#: most MAX_HALVINGS halvings (methods.md §13). Not pinned by a test.
 ARMIJO, MAX_HALVINGS = 1e-4, 20
 #: An iteration that keeps more than SLOW_PROGRESS of the merit counts as slow (`patience`).
 #: Not pinned by a test.

@@ -27,17 +27,14 @@ from .branches import follow_branch
 from .continuation import Linearisation, correct
 from .paths import GridMoves
 
-#: Points of the curve traced again before and after each event, 3: the window then spans at
-#: least three turn limits either side, well beyond how far the event moves between the two
-#: discretisations. test_near_events.py.
+#: Points of the curve traced again before and after each event (methods.md §13);
+#: test_near_events.py.
 WINDOW = 3
-#: Times the start of a window moves WINDOW points further back when its state is not a stable
-#: equilibrium on the finer discretisation (it lay between the two discretisations' folds), 3.
-#: Not pinned by a test.
+#: Times a window's start moves WINDOW points back where it is not stable on the finer
+#: discretisation (methods.md §13). Not pinned by a test.
 BACK_OFF = 3
-#: Newton iterations allowed to correct a state moved from another grid, 40 (four times a
-#: continuation step's): its guess is an interpolated state, not a predictor along the curve.
-#: Not pinned by a test.
+#: Newton iterations for a state moved from another grid, four times a continuation step's
+#: (methods.md §13). Not pinned by a test.
 MOVED_NEWTON = 40
 
 

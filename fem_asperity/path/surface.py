@@ -64,9 +64,8 @@ def derjaguin_profile(r, radius_ratio=None):
     return np.where(x < 1.0, radius_ratio * x / (1.0 + np.sqrt(1.0 - x)), np.inf)
 
 
-#: The gap (ε) that marks the crack tip, where the adhered zone (gaps ≈ 1 ε, in tension outside
-#: the compressive contact radius ā_c) opens: the stiffest destabilising gap, 7.5^(1/6). At large
-#: μ the tip lies well outside ā_c; test_tracking.py::test_spring_ratio_limits checks the gap.
+#: The gap (ε) that marks the crack tip: the stiffest destabilising gap of the LJ law (methods.md
+#: §13); test_tracking.py::test_spring_ratio_limits checks it.
 TIP_GAP = 7.5 ** (1.0 / 6.0)
 
 

@@ -39,13 +39,11 @@ def atomic_path(path):
 #: Names of the package's own entries in an output folder: its record (and the record's
 #: temporary file while it is written) and its staging folders. They are never a user's.
 OURS_PREFIX = ".adhesion-"
-#: Prefix of the staging folders inside an output folder (and of a folder renamed aside while
-#: it is replaced), followed by the writing process's id, so that a later run removes what a
-#: killed one left and leaves a running one's alone.
+#: Prefix of staging folders and of folders renamed aside, then the writer's process id: a later
+#: run removes a killed one's and leaves a running one's (methods.md §13); test_files.py.
 STAGE_PREFIX = OURS_PREFIX + "stage-"
-#: The record an output folder keeps of the command that wrote it and of the files it wrote
-#: (paths relative to the folder, those in its subfolders too): a later run of that command
-#: replaces those and nothing else.
+#: An output folder's record of the command that wrote it and every file it wrote: a later run
+#: of that command replaces those and nothing else; test_files.py.
 RECORD = OURS_PREFIX + "output.json"
 
 

@@ -11,10 +11,8 @@ import importlib.util
 from functools import cache
 from pathlib import Path
 
-#: The modules whose code computes a stored curve, and the modules they import from the package:
-#: the solve itself (`solver.solve`, with the presets, paths, solids and closed forms below it)
-#: and the store, which reads and writes the stored format. The CLI, figures and field output
-#: are outside: editing them keeps the stored curves.
+#: The roots of the code that computes a stored curve: the solve and the store's format, with
+#: all they import (methods.md §13); test_layering.py checks the set.
 REVISION_ROOTS = ("fem_asperity.solver.solve", "fem_asperity.studies.store")
 
 

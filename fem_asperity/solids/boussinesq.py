@@ -36,15 +36,10 @@ _Q_TAYLOR = np.array([0.5 * (gamma(n + 0.5) / (gamma(0.5) * gamma(n + 1))) ** 2 
 #: Kernel evaluations per chunk of the dense far-field sum (bounds memory at ~50 MB). Not pinned
 #: by a test.
 _CHUNK = 2_000_000
-#: Elements per block, each way, that `galerkin_matrix` evaluates in full where the elements are
-#: not well separated (`_partition`): the smaller, the fewer kernel values, the more blocks
-#: (numpy calls). Not pinned by a test.
+#: Elements per block, each way, that `galerkin_matrix` evaluates in full where not well
+#: separated: fewer kernel values against more numpy calls. Not pinned by a test.
 _LEAF = 32
-#: Chebyshev points per variable of a well-separated block of `galerkin_matrix`: the kernel is
-#: analytic within the Bernstein ellipse of parameter ρ ≥ 3 + √8 about each span (it is singular
-#: only on the circle |s| = r, whose nearest point, on the other span, lies at least the larger
-#: span's extent away), so the interpolation error falls like ρ^(−20) ≈ 5e-16 (times Lebesgue
-#: constants ~10);
+#: Chebyshev points per variable of a well-separated block: error ~ρ^(−20) ≈ 5e-16 (methods.md §13);
 #: test_bem.py::test_galerkin_matrix_is_the_tested_deflection_tested_against_the_hat_functions.
 _CHEBYSHEV = 20
 
@@ -83,11 +78,8 @@ def _unit_gauss(n):
 
 _GL = _unit_gauss(_POINTS)
 _LOG = log_gauss(_POINTS)
-#: Far-field rules by the distance from r to an element, in element lengths: Gauss-Legendre with
-#: 8 points from 1 length (`_NEAR`), 6 from 2.5, 5 from 4 (`_MID_RULES`), 4 from 9 lengths on,
-#: each rule's error ρ^(−2n) (ρ = x + √(x² − 1), x = 1 + 2 × distance/length) at most the
-#: 8-point rule's at one length, 5.7e-13 (6 points at 2.5 lengths: 1.2e-13; 5 at 4: 2.9e-13; 4 at
-#: 9: 2.3e-13); test_bem.py::test_displacement_matrix_matches_adaptive_quadrature.
+#: Far-field Gauss rules by distance in element lengths, each within 5.7e-13 (methods.md §13);
+#: test_bem.py::test_displacement_matrix_matches_adaptive_quadrature.
 _NEAR, _FAR_RULE = (1.0, 9.0), _unit_gauss(4)
 _MID_RULES = ((1.0, _unit_gauss(8)), (2.5, _unit_gauss(6)), (4.0, _unit_gauss(5)))
 

@@ -40,10 +40,8 @@ ELEMENTS = {1: ElementTriP1, 2: ElementTriP2}
 _SPD = dict(diag_pivot_thresh=0.0, options=dict(SymmetricMode=True))
 
 
-#: Supported layer moduli relative to the substrate, and layer thicknesses in √(Rε): at a ratio of
-#: 1e-3 (μ = 1, draft) the continuation failed and at 1e300 the factorisation; a layer thinner
-#: than 1e-2 is below any surface element. The upper ends are open. test_cli's bad-input test
-#: pins both.
+#: Supported layer/substrate modulus ratios and layer thicknesses in √(Rε), upper ends open
+#: (methods.md §13); test_cli's bad-input test pins both.
 LAYER_MODULUS_RATIO, LAYER_THICKNESS = (1e-2, 1e2 + 1e-9), (1e-2, 1e3)
 
 
@@ -105,9 +103,8 @@ def _strain(u, r):
     return grad[0, 0], grad[1, 1], u[0] / r, grad[0, 1] + grad[1, 0]
 
 
-#: Assembled through scikit-fem's threaded kernel loop with one thread (an error estimate builds
-#: its own mesh alongside): the same matrix to the last bit, about 3 times faster than the plain
-#: loop (measured in the commit that set it). Not pinned by a test.
+#: scikit-fem's threaded kernel loop on one thread: the same matrix to the bit, faster than the
+#: plain loop (methods.md §13). Not pinned by a test.
 @BilinearForm(nthreads=1)
 def axisymmetric_elasticity(u, v, w):
     """∫ σ(u):ε(v) r dr dz with σ = λ tr ε I + 2G ε, hoop strain u_r/r included."""

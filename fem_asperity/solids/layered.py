@@ -26,11 +26,8 @@ from scipy.special import itj0y0, j0, j1
 #: Upper end of the k integral times t: C − 1 ≈ 4b(kt)² e^{−2kt} is below 3e-13 at kt = 18.
 #: test_layered.py::test_correction_converges_in_the_k_rule.
 K_MAX_T = 18.0
-#: Panel width of the k rule times the largest node radius: the integrand oscillates like
-#: J₀(kr)J₀(ks) with r + s up to twice that radius, so each panel spans at most
-#: 2 r_max Δk = 16 radians, with K_POINTS = 22 Gauss points; the compliance then agrees with
-#: panels 8 times narrower to 1e-14 and costs a third of 4 radians with 8 points.
-#: test_correction_converges_in_the_k_rule.
+#: The k rule: panels of K_PANEL_R / r_max (16 radians of J₀(kr)J₀(ks)), K_POINTS Gauss points
+#: each (methods.md §13); test_correction_converges_in_the_k_rule.
 K_PANEL_R, K_POINTS = 8.0, 22
 #: Elements with k·length up to this are integrated by Gauss (the exact antiderivatives
 #: cancel there), longer ones exactly. test_hat_transforms_match_brute_force_quadrature.

@@ -16,13 +16,7 @@ from ..plumbing.version import __version__
 from ..solids.fe import Solid
 from ..solids.operator import ElasticSurface
 
-#: Values of `CurveResult.status`, from the best to the worst news.
-#: ok: no more folds than one jump-in and one jump-out, the estimate (if asked for) obtained and
-#: the tolerance (if one was set) met. no_estimate: the error estimate's second solve (finer, or
-#: the boundary integral's curve) failed or rippled. ripples: more folds than two after the
-#: refinements, the sign of a surface mesh too coarse for μ. missed_jump: above the onset of
-#: jump-in, yet no jump-in found on any refinement tried. tolerance_not_met:
-#: `solve_to_tolerance` ran out of levels.
+#: Values of `CurveResult.status`, from the best to the worst news (`CurveResult` defines each).
 STATUSES = ("ok", "no_estimate", "ripples", "missed_jump", "tolerance_not_met")
 #: Folds of δ̄o the physics has at most: one jump-in and one jump-out; more are ripple.
 PHYSICAL_FOLDS = 2
@@ -81,7 +75,13 @@ class CurveResult:
     `solve_curve` beyond μ, method, accuracy and solid. z_jumps: under load-line control, the
     spring end's z̄ (ε) at the jumps, {'z_jump_in', 'z_jump_out'}; the events' separations stay
     the sphere's δ̄o.
-    status: one of `STATUSES` ('ok' unless something calls for a finer accuracy);
+    status: one of `STATUSES` ('ok' unless something calls for a finer accuracy). ok: no more
+        folds than one jump-in and one jump-out, the estimate (if asked for) obtained and the
+        tolerance (if one was set) met. no_estimate: the error estimate's second solve (finer,
+        or the boundary integral's curve) failed or rippled. ripples: more folds than two after
+        the refinements, the sign of a surface mesh too coarse for μ. missed_jump: above the
+        onset of jump-in, yet no jump-in found on any refinement tried. tolerance_not_met:
+        `solve_to_tolerance` ran out of levels.
     message: how it was obtained, and why the status is not 'ok' where it is not.
     regrid_change: on grids that follow the contact edge, the largest |ΔP̄| of a state moved to
         a new grid while on a branch: how much where the grids lie moves the forces (a 'finer'
