@@ -15,10 +15,8 @@ from provenance import add_output_options, cell, provenance, write_results
 from fem_asperity.plumbing.cli import ProgressBar
 from fem_asperity.solver.solve import solve_curve
 
-#: (label, μ, method, accuracy, error estimate, spring k̄ or None): μ = 50 at `draft` as a
-#: user runs it (with the estimate; the FE refuses a surface that fine up front); a whole
-#: curve (a spring) up to WHOLE_CURVE_MU_MAX; the spring from k̄ = 1e-3 to the softest taken
-#: (μ = 1: the approach starts farther out as k̄ falls).
+#: (label, μ, method, accuracy, error estimate, spring k̄ or None): the ends of the solved ranges
+#: (methods.md §14). Not pinned by a test; benchmarks/results/extremes.md has the results.
 RUNS = (("BEM draft, mu = 50, with estimate", 50.0, "bem", "draft", True, None),
         ("BEM draft, mu = 5, k = 1", 5.0, "bem", "draft", False, 1.0),
         ("BEM draft, mu = 6, k = 1", 6.0, "bem", "draft", False, 1.0),

@@ -27,12 +27,8 @@ from .surface import RoughSurface
 
 #: The shipped measurement of the corrected law's F̄max error.
 ERROR_FILE = Path(__file__).with_name("data") / "corrected_law_error.json"
-#: The fit's sample of the table: every FIT_STEP-th node (18 of 52 μ), and the weight of the
-#: curve P̄(δ̄o) beside F̄max. F̄max is blind to a shift of the whole curve in δ̄o (it moves
-#: d̃ only), and alone it let δ̄J and δ̄m trade at large μ (a jump at δ̄o = 31 instead of 14 at
-#: μ = 50 gave the same F̄max); with the curve in they stay where the solved curves put them.
-#: Weight 0.3 against 1: 76 of the 103 measured μ within 5 % against 70, largest 10.2 % against
-#: 10.6 % (docs/corrected_law.md has the current table).
+#: The fit's sample of the table (every FIT_STEP-th node) and the weight of P̄(δ̄o) beside F̄max
+#: (methods.md §14). Not pinned by a test; docs/corrected_law.md has the errors.
 FIT_STEP, CURVE_WEIGHT = 3, 0.3
 #: Points of the solved approach each fit curve is compared at, from its deepest δ̄o to three
 #: times its jump (or δ̄o*), leaving out 0.05 (1 + √μ) on either side of the jump.

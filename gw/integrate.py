@@ -23,27 +23,16 @@ from fem_asperity.plumbing.errors import InputError
 from .shared_ground import shared_ground
 from .surface import height_pdf
 
-#: Heights below −WINDOW/ω are left out, and those above +WINDOW/ω as long as the asperities come
-#: into contact below 8/ω (see TAIL): the Gaussian beyond 12 carries < 1e-31 (at 9 the
-#: deep-asperity repulsion left out was 1.6e-3 of a tiny F̄ at ζ = 500). Gauss points per panel,
-#: equal panels per piece and geometric levels of each end panel: as above. All four pinned by
-#: test_gw.py::test_totals_match_adaptive_quadrature_to_1e8.
+#: Heights outside ±WINDOW/ω are left out, the top as TAIL says (methods.md §14); it and _GAUSS,
+#: _UNIFORM, _LEVELS below: test_gw.py::test_totals_match_adaptive_quadrature_to_1e8.
 WINDOW = 12.0
-#: Above the height z̃c = d̃ − δ̄/ζ where asperities reach the law's lowest breakpoint δ̄ (contact),
-#: the heights are taken at least up to where the Gaussian has fallen by e^(−TAIL) from its value
-#: at z̃c: the asperities above z̃c press in, by P̄ ∝ (ζ(z̃ − z̃c)/μ)^(3/2), so that with a stiff law
-#: (small μ, large ζ) those above 12/ω still matter once z̃c nears 12/ω (μ = 1e-25, ζ = 1: F̄max
-#: is at d̃ = 14.2; with the heights cut at 12 it was found at the cut, 13, and 21% too large).
-#: e^(−40) is the fall the fixed window gives at z̃c = 8/ω, so up to there nothing changes.
+#: Above the contact height z̃c the heights go at least to where the Gaussian has fallen by
+#: e^(−TAIL), as a stiff law needs (methods.md §14). Not pinned by a test.
 TAIL = 40.0
 #: Largest |d̃| taken: far beyond any asperity (12/ω) and the LJ range, yet small enough that
 #: ζ(d̃ ± 12/ω) stays finite (d̃ = 1e307 gave NaN). test_gw's bad-input test pins it.
 D_MAX = 1e6
-#: Largest ζ/μ = θ^(2/3) (θ: the Fuller-Tabor parameter) and 1/μ taken: the repulsion of the
-#: asperities pressed in, P̄ ∝ ((δ̄oc + ζ(z̃ − z̃c))/μ)^(3/2), stays far from overflow (ζ/μ ≈ 1e200
-#: and μ = 1e-300 gave inf − inf: NaN) and F̄max far from underflow (ζ = 1e99: 1e-201; ζ = 1e300
-#: gave F̄max = −0.0). Far beyond any surface (ζ = σ/ε ≲ 1e7, μ ≳ 1e-3), and checked against
-#: adaptive quadrature (2e-9) up to it: μ = 1e-50 at ζ = 1, ζ = 1e50 at μ = 1.
+#: Largest ζ/μ = θ^(2/3) and 1/μ taken, far from overflow and underflow (methods.md §14);
 #: test_gw.py::test_stiff_or_far_inputs_are_refused_up_front pins it.
 RATIO_MAX = 1e50
 #: Most times `strength` extends its d̃ grid past an end (by the width of `separation_range`,

@@ -36,9 +36,8 @@ from .laws import AREA, FORCE, TabulatedLaw
 
 #: δ̄o where every solved approach starts (solver.solve's far end): the far landmark.
 FAR = 40.0
-#: Above μ ≈ 22 the jump-out lies beyond FAR (δ̄o = 47.3 at μ = 28.7); the far landmark is then
-#: this factor beyond it (the landmarks must decrease). With FAR alone the retraction's P̄ was
-#: off by 0.3 there (held out); docs/law_table.md has it now.
+#: Where the jump-out lies beyond FAR (μ ≳ 22), the far landmark is this factor beyond it
+#: (methods.md §14). Not pinned by a test; docs/law_table.md has the error.
 FAR_BEYOND_JUMP = 1.25
 #: P̄ of the landmarks in contact; every solved path reaches P̄ = 1 (solve_curve's p_end).
 LEVELS = (0.0, 0.5, 1.0)

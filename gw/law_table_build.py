@@ -29,14 +29,11 @@ from .surface import RoughSurface
 
 #: The table's range: the paper's μ (0.01 up) to the solver's largest (solver.solve.MU_RANGE).
 MU_LOW, MU_HIGH = 0.01, MU_RANGE[1]
-#: Nodes per decade: at 6, the held-out F̄max error reached 0.5 % (μ = 8.3, ζ = 50) with the
-#: cubic stencil; 12 (this) keeps it below the 2 % goal of a corrected closed form by a wide
-#: margin. The measured errors are in the table (test_law_table.py).
+#: Nodes per decade of μ: the held-out F̄max error stays well below the 2 % goal
+#: (methods.md §14); test_law_table.py.
 NODES_PER_DECADE = 12
-#: Extra nodes below the onset's bracket and above it (factors of its ends): the steepest point
-#: sharpens into a fold there and the jump-in grows from nothing like a square root, which a
-#: polynomial in log μ follows only on short spans. Without those below, P̄ was off by up to
-#: 1.1e-2 at μ = 0.64 (held out), with them by 3.7e-3.
+#: Extra nodes below and above the onset's bracket (factors of its ends), where the law folds
+#: (methods.md §14). Not pinned by a test.
 ONSET_NODES_BELOW, ONSET_NODES_ABOVE = (0.9, 0.97), (1.03, 1.1)
 METHOD, ACCURACY = "bem", "default"
 #: Relative rounding of a stored path's δ̄o (its CSV keeps 10 significant digits).

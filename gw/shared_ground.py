@@ -39,9 +39,8 @@ CONTACT_GAP = 1.0
 #: Points per unit of log(h/CONTACT_GAP): the densities vary on σ_s (in h: ζ s̃) and the LJ terms
 #: on ε; 400 per e-fold keeps T̄ within 1e-5 of a grid twice as fine (test_shared_ground.py).
 PER_E_FOLD = 400
-#: Heights below −REACH s̃ hold no summit (the Gaussian's tail beyond 13 is below 1e-37); the
-#: map's own lowest ground, far from every cap, reaches deeper (F falls like exp(2π σRη ũ)), so
-#: the gaps are integrated down to where F is e^(−DEPTH), and analytically beyond (Q = 1, F = 0).
+#: Heights below −REACH s̃ hold no summit; the gaps are integrated down to where F is e^(−DEPTH),
+#: analytically beyond (methods.md §14). Not pinned by a test.
 REACH, DEPTH = 13.0, 40.0
 
 

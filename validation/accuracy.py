@@ -26,10 +26,8 @@ from fem_asperity.solver.solve import solve_curve
 #: Events judged: the pull-off force, the most tensile approach force's separation and contact
 #: radius, the gap before the jump-in, the jumps' positions, and the approach force maximum.
 KEYS = ("p_off", "p_max", "delta_oc", "a_c", "x_oc", "delta_jump_in", "delta_jump_out")
-#: One μ per regime: DMT-like (0.1), the transition (1), JKR-like (5, 10). The FE follows the
-#: contact edge from μ = 5 but meshes the whole strip r ≤ r_fine finely, so above FE_MU_MAX its
-#: curves (and their estimates' meshes) cost minutes: left out; above FE_FINE_MU_MAX its `fine`
-#: too (at μ = 5 the `draft` estimate's solve alone had 500k DOFs).
+#: One μ per regime; the FE's curves above FE_MU_MAX, and its `fine` above FE_FINE_MU_MAX, cost
+#: minutes: left out (methods.md §14). Not pinned by a test.
 STUDY_MUS, FE_MU_MAX, FE_FINE_MU_MAX = (0.1, 1.0, 5.0, 10.0), 5.0, 1.0
 #: --quick: the transition only, the two cheaper presets, one setting of each kind.
 QUICK_MUS, QUICK_PRESETS = (1.0,), ("draft", "default")
@@ -45,9 +43,8 @@ ORDER_MIN_RATIO = 1.2
 #: An error is judged against the estimate only where it exceeds the reference's uncertainty
 #: this many times.
 RESOLVED = 10.0
-#: The exact sphere against Derjaguin's parabola: R/ε values, at μ = 1 on the BEM `draft` (its
-#: discretisation error, below 1e-6 in P̄off, is the same for both profiles). The slope of the
-#: difference is fitted from DERJAGUIN_FIT_FROM on, where ε/R is small.
+#: The exact sphere against Derjaguin's parabola: R/ε values, the slope fitted from
+#: DERJAGUIN_FIT_FROM on (methods.md §14). Not pinned by a test.
 DERJAGUIN_RATIOS, DERJAGUIN_FIT_FROM = (10.0, 1e2, 1e3, 1e4, 1e5), 1e2
 #: GW quadrature: F̄max at these sample counts against REFERENCE_SAMPLES.
 GW_SAMPLES, GW_REFERENCE_SAMPLES = (12, 24, 48), 192

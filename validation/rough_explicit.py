@@ -28,9 +28,8 @@ from .report import counted
 
 #: The quick tier: six caps at μ = 1, ζ = 2, σRη = 0.05 (a 58² map; seconds).
 QUICK = ({"mu": 1.0, "zeta": 2.0, "sigma_r_eta": 0.05, "summits": 6},)
-#: The map: μ below and above the jump-in onset (0.697); ζ from smooth to rough beside ε; σRη
-#: from sparse to crowded summits (0.15: caps about 2.4 √(Rε) apart at ζ = 0.5). Pixels by
-#: `map_pixel`. μ = 3 would need 0.06 √(Rε), three times μ = 2's pixels: left out.
+#: The map: μ below and above the jump-in onset (0.697), ζ smooth to rough, σRη sparse to
+#: crowded; pixels by `map_pixel` (methods.md §14). Not pinned by a test.
 MAP_MU, MAP_ZETA, MAP_SRE = (0.1, 0.3, 1.0, 2.0), (0.5, 2.0, 6.0), (0.02, 0.05, 0.15)
 #: The map's pixel (√(Rε)) where μ allows: compliance number μ^1.5 a/π = 0.064 at μ = 1, where
 #: one cap's F̄max was 8.5e-4 off the boundary integral (test_whole_surface.py).
@@ -39,11 +38,8 @@ MAP_PIXEL = 0.2
 #: sample's share of each model's error.
 MAP_SUMMITS, MAP_SEEDS = 16, (0, 1)
 ACCURACY = "draft"
-#: Self-affine surfaces, answered as a user's map is (`gw.explicit.answer`, from the summits it
-#: measures): Hurst 0.8, wavelengths from 12 to 64 pixels on a periodic 128² map (about 36
-#: summits, σRη ≈ 0.05; 0.2-0.3 √(Rε) per pixel at an rms height ζ ≤ 2 ε, so μ = 1 keeps a
-#: compliance number ≤ 0.1; at ζ = 6 the height step between pixels, 0.68 ε, would be coarse),
-#: E* set from the summits' mean radius for μ.
+#: Self-affine surfaces, answered as a user's map is (`gw.explicit.answer`), within the map's
+#: resolution bounds at μ = 1, ζ ≤ 2 (methods.md §14). Not pinned by a test.
 AFFINE = {"n": 128, "hurst": 0.8, "short": 12, "long": 64}
 AFFINE_MU, AFFINE_ZETA, AFFINE_SEEDS = (0.3, 1.0), (1.0, 2.0), (1, 2)
 

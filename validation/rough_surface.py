@@ -225,9 +225,8 @@ def verdicts(data, spread, law_at=PaperLaw, jump_in=PAPER_LAWS.delta_oc, large_m
     return [{"claim": c, "found": f, "verdict": v} for c, f, v in rows]
 
 
-#: μ of the default paper-vs-solved (BEM) comparison: both regimes, up to μ = 10 (from
-#: MU_TRACKING on the BEM's grids follow the contact edge, `fem_asperity.path.grids`). Fig. 9's
-#: μ = 46.9 solves too, but costs more than all of these together: ask for it with --compare-mu.
+#: μ of the default paper-vs-solved (BEM) comparison: both regimes, up to μ = 10; Fig. 9's 46.9
+#: with --compare-mu (methods.md §14). Not pinned by a test.
 COMPARISON_MU = (0.1, 0.3, 0.5, 0.7, 1.0, 2.0, 3.0, 5.0, 10.0)
 #: The paper's law "holds" on a row where its F̄max is within this fraction of the solved law's
 #: (the threshold `gw fmax --compare` warns above).

@@ -11,9 +11,8 @@ from fem_asperity.closed_forms.laws import PAPER_LAWS, AsperityLaws
 from fem_asperity.closed_forms.reference import jkr_compressive_radius
 from fem_asperity.plumbing.files import save_figure
 
-#: R/ε of Fig. 7's physical axes. The picture's shape does not depend on it: (P − P_max)/(4E*R²/3)
-#: scales as (ε/R)^(3/2) and (δ_oc − δ_o)/R as ε/R, so another R/ε moves every point along its own
-#: curve y = c x^(3/2) (the area's: y = c x), keeping its ratio c to Hertz (c = 1).
+#: R/ε of Fig. 7's physical axes; the picture's shape does not depend on it (methods.md §14).
+#: Not pinned by a test.
 RADIUS_RATIO = 1000.0
 #: μ of the paper's Fig. 5 (eq. 9 against the FE), Fig. 7 and the hysteresis loops.
 FIG5_MU, FIG7_MU, LOOP_MU = (0.091, 0.19, 0.3, 0.425), (0.091, 0.425, 1.0, 1.971), (0.5, 1, 2, 5)

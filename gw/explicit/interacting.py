@@ -39,10 +39,8 @@ from .halfspace import PixelHalfSpace
 TOLERANCE = 1e-10
 #: Newton steps per state set, and state sweeps per separation, before giving up.
 MAX_NEWTON, MAX_SWEEPS = 50, 200
-#: Where the held states have no equilibrium, a summit within this (ε) of its threshold is
-#: taken to jump (the coupled fold comes early: two caps 12 √(Rε) apart at μ = 1 lost their
-#: branch with δ̄ within 0.002 ε of it); farther from every threshold the model stops
-#: (`SummitPath.stopped`).
+#: Where the held states have no equilibrium, a summit within this (ε) of its threshold jumps;
+#: farther, the model stops (methods.md §14). Not pinned by a test.
 FOLD_BAND = 0.1
 #: Step of the one-sided difference for P̄′ (ε): the laws are PCHIP in δ̄, smooth on 1e-6.
 SLOPE_STEP = 1e-6

@@ -4,10 +4,8 @@ import numpy as np
 
 from fem_asperity.closed_forms.lj import scaled_traction
 
-#: Quadrature of `force_beyond`: the plane beyond the square's inscribed circle by the midpoint
-#: rule in r̄ (steps of 1e-3 √(Rε) out to 60: the tail beyond, (16/3)·60⁻⁴ = 4e-7 of 2πRΔγ, is
-#: left out), less the square's corners by the midpoint rule on a grid of 0.01 √(Rε) (it agrees
-#: with a 0.01 grid over the whole plane to 3e-7 at d = 1, μ = 0.1).
+#: Quadrature of `force_beyond` (√(Rε)): radial midpoint step and reach beyond the inscribed
+#: circle, and the corners' grid (methods.md §14). Not pinned by a test.
 RADIAL_STEP, REACH, STEP = 1e-3, 60.0, 0.01
 
 

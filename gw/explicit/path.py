@@ -15,11 +15,8 @@ from scipy import ndimage
 
 from fem_asperity.closed_forms.lj import scaled_traction
 
-#: A pixel has jumped where its gap differs from the branch's prediction by more than this (ε):
-#: a jump moves a gap by about ε (μ = 1: from 2.06 to 1.02 in, 1.03 to 2.2 out); the secant's
-#: own error on a stable branch reached 0.24 ε near the pull-off's fold (μ = 1, Δd = 0.1).
-#: Jumps of the gap smaller than this (μ just above the onset 0.697) are not told from the
-#: branch. Pixels farther than JUMP_RANGE from the rigid map before and after are left out.
+#: A pixel within JUMP_RANGE (ε) of the rigid map jumped where its gap leaves the branch's
+#: prediction by over JUMP_CHANGE ε (methods.md §14); test_whole_surface.py (periodic edge).
 JUMP_CHANGE = 0.5
 JUMP_RANGE = 3.0
 #: Contact: compressive traction, gap below ε.

@@ -33,27 +33,20 @@ from fem_asperity.plumbing.errors import ContinuationError
 #: Gaps below this (ε) are refused by the energy (+inf, so the line search halves): the LJ
 #: repulsion there, 8/3 h̄⁻⁹ > 5e6 Δγ/ε, is far beyond any load a separation step asks for.
 GAP_FLOOR = 0.2
-#: Converged where the largest residual of w + cG p̄, i.e. |S ∇E|, is below this (ε): 1e-6 ε
-#: of deflection moved the force paths of the 128² free benchmark map by 3e-7 2πRΔγ from those
-#: at 1e-9 ε (F̄max 8.94; the pixel's own error is ~1e-3 of it) for 23 % fewer products
-#: (19036 -> 14585 at draft; test_whole_surface.py pins the paths' agreement).
+#: Converged where the largest residual |S ∇E| is below this, in ε of deflection (methods.md §14);
+#: test_whole_surface.py pins the paths' agreement with a thousand times less.
 TOLERANCE = 1e-6
 #: Newton steps allowed per separation before the state is reported unconverged (a jump across
 #: a whole asperity takes tens; a step on a stable branch two to four).
 MAX_STEPS = 300
-#: Relative residual the conjugate gradients stop at (or √|∇E| once that is smaller): 0.1, the
-#: cheapest of 0.5, 0.1 and 0.01 on the 128² map of benchmarks/results/rough_surfaces.md (the
-#: commit that set it has the times). Not pinned by a test.
+#: Relative residual the conjugate gradients stop at (or √|∇E| once that is smaller): the
+#: cheapest measured (methods.md §14). Not pinned by a test.
 NEWTON_FORCING = 0.1
-#: BLAS threads while a map is solved (`whole`): its only BLAS calls are the CG's dot products
-#: and updates, as fast on one thread; with two, beside a pool of solves that keeps the cores
-#: busy, each call waited for a core (a profile in the commit that set it). Not pinned by a test.
+#: BLAS threads while a map is solved (`whole`): one is as fast for the CG's dot products and
+#: updates (methods.md §14). Not pinned by a test.
 BLAS_THREADS = 1
-#: glibc hands a freed block above its mmap threshold back to the kernel, and the next array
-#: of that size faults its pages in again: on a free 256² map (fields of 1-2 MB) that cost more
-#: than the FFTs. `keep_freed_memory` (called by the package's own commands, or by a user once)
-#: takes blocks below MMAP_BELOW bytes from the heap, and gives its top back to the kernel only
-#: beyond KEEP_FREED bytes, for the rest of the process.
+#: `keep_freed_memory` takes blocks below MMAP_BELOW bytes from the heap and keeps its top up to
+#: KEEP_FREED bytes: freed fields are not faulted in again (methods.md §14). Not pinned by a test.
 MMAP_BELOW = 32 * 2**20
 KEEP_FREED = 256 * 2**20
 #: Conjugate-gradient iterations per Newton step: H = I − SDS is near 1 away from contact, and

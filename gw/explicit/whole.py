@@ -33,16 +33,11 @@ from .halfspace import PixelHalfSpace
 from .path import follow
 from .relax import BLAS_THREADS, LJMap
 
-#: Largest compliance number c = Δγ a/(π E* ε²) without a warning: the pixel a against the
-#: cohesive zone's elastic length E*ε²/Δγ (for caps c = μ^1.5 a/π, a in √(Rε)). One cap against
-#: the boundary integral: at μ = 1, c = 0.064 put F̄max 8.5e-4 off, c = 0.032 half that
-#: (test_whole_surface.py pins the latter); at μ = 3, c = 0.099 on a patch 12 √(Rε) wide put it
-#: 2e-4 off (benchmarks/rough_surfaces.py); c = 0.33 advanced the contact ring by ring of
-#: pixels (lattice trapping). Above REFUSE times it the map is refused.
+#: Largest compliance number c = Δγ a/(π E* ε²) without a warning (methods.md §14);
+#: test_whole_surface.py pins F̄max at c = 0.032, benchmarks/rough_surfaces.py at 0.099.
 COMPLIANCE_MAX = 0.1
-#: Largest rms height step between neighbouring pixels (ε): the gap must not change by more
-#: than a fraction of the LJ range (about ε) across a pixel. A cap at μ = 1 with a = 0.2 √(Rε)
-#: steps by 0.3-0.5 ε where its gap is 1-2.5 ε and was within 1e-3 of the reference.
+#: Largest rms height step between neighbouring pixels (ε), a fraction of the LJ range
+#: (methods.md §14). Not pinned by a test.
 HEIGHT_STEP_MAX = 0.5
 #: A map this much coarser than either bound is refused, not warned about.
 REFUSE = 8.0
@@ -52,9 +47,8 @@ MAX_PIXELS = 2048**2
 #: Fewest pixels along a side: the error estimate halves the map, and a contact zone needs a
 #: few pixels on the half map.
 MIN_PIXELS = 16
-#: The approach starts with the highest point this far (ε) from the undeformed solid, or
-#: farther by steps of it until the map relaxed there keeps half of it (`_far_start`): the LJ
-#: traction there, 8/3 · 4⁻³ = 4 % of Δγ/ε at the top only, is the far field.
+#: The approach starts with the highest point this far (ε) from the solid, or farther by steps of
+#: it (methods.md §14); test_whole_surface.py (a soft solid's start).
 START_GAP = 4.0
 #: Times the start is moved out by START_GAP before the map is refused as too soft.
 START_TRIES = 25
