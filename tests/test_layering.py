@@ -83,6 +83,13 @@ def test_the_refit_is_keyed_by_its_own_code_as_well():
     assert set(revision.revision_modules()) <= covered
 
 
+def test_a_packages_relative_imports_resolve_inside_it():
+    """`from .compare import ...` in gw/explicit/__init__.py is gw.explicit.compare, not
+    gw.compare (a root that reached the package's __init__ used to fail)."""
+    covered = set(revision.revision_modules(("gw.explicit",)))
+    assert {"gw.explicit.compare", "gw.explicit.interacting", "gw.explicit.whole"} <= covered
+
+
 def test_the_revision_key_covers_the_solver_and_not_the_interfaces():
     covered = set(revision.revision_modules())
     for module in ("solver.solve", "solver.presets", "solver.result", "path.continuation",

@@ -27,7 +27,9 @@ def _package_imports(module):
     root in gw) that `module` imports from (the packages import from modules only: `from
     ..curves.curve import Curve`, never `from .. import path`)."""
     tree = ast.parse(_source(module))
-    package = module.rsplit(".", 1)[0]
+    # a package's __init__ imports relative to the package itself, a module relative to its own
+    package = (module if importlib.util.find_spec(module).submodule_search_locations is not None
+               else module.rsplit(".", 1)[0])
     found = {importlib.util.resolve_name("." * node.level + (node.module or ""), package)
              for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)}
     return {name for name in found if name.split(".")[0] in ("fem_asperity", module.split(".")[0])}
