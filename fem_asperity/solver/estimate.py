@@ -50,13 +50,27 @@ FORCE_AT = {"p_max": "delta_oc", "p_jump_after": "delta_jump_in", "p_off": "delt
 #: The FE's estimate against the BEM: DIFFERENCE_FACTOR |FE − BEM| + the BEM's own estimate (§12).
 #: test_bem_curve.py::test_the_fes_estimate_against_the_bem_bounds_its_error.
 DIFFERENCE_FACTOR = 2.0
+#: Under a spring, the spring end's z̄ at the jumps (`CurveResult.z_jumps`) is estimated too.
+SPRING_JUMPS = ("z_jump_in", "z_jump_out")
+
+
+def compared(result):
+    """What an estimate compares of a curve: its events (`Events.records`) and, under a spring,
+    the z̄ of its jumps."""
+    return result.events.records() | (result.z_jumps or {})
+
+
+def _keys(a):
+    """The keys estimated of the compared values `a`: ESTIMATED, and SPRING_JUMPS under a
+    spring."""
+    return (*ESTIMATED, *(k for k in SPRING_JUMPS if k in a))
 
 
 def difference_estimate(a, disc, b, partner_disc):
     """Error estimate of the events `a` (records, solved on `disc`) from the partner's `b` (on
     `partner_disc`, surface elements r times as long): |difference| / |r − 1| per ESTIMATED
-    key, None where the event is missing in either (`_one_sided` and `_missed` name those
-    found by one of the two only).
+    key (and SPRING_JUMPS key under a spring, `compared`), None where the event is missing in
+    either (`_one_sided` and `_missed` name those found by one of the two only).
 
     Against a finer partner (r = 1/2) that is twice the difference: the error of first-order
     convergence, which bounds faster convergence too (at order p the difference is the
@@ -64,14 +78,14 @@ def difference_estimate(a, disc, b, partner_disc):
     Against a coarser one (r = 2, `solve_to_tolerance`) it is the difference itself."""
     scale = 1.0 / abs(partner_disc.h_surface / disc.h_surface - 1.0)
     return {k: (scale * abs(a[k] - b[k]) if a[k] is not None and b[k] is not None else None)
-            for k in ESTIMATED}
+            for k in _keys(a)}
 
 
 def _one_sided(a, b, other_named="its finer estimate discretisation"):
     """The clause naming the estimated events (records `a` of the solve, `b` of the other solve,
     `other_named`) that one of the two has and the other not (a jump one discretisation finds
     and the other misses): their estimate is None. "" where there are none."""
-    keys = [k for k in ESTIMATED if (a[k] is None) != (b[k] is None)]
+    keys = [k for k in _keys(a) if (a[k] is None) != (b[k] is None)]
     if not keys:
         return ""
     return (f"{', '.join(keys)} found by only one of the solve and {other_named} (no "
@@ -230,7 +244,7 @@ def _estimated_by_whole_solve(mu, disc, options, progress, pool):
                 partner = solve_discretised(mu, partner_on, **options)
             if partner.ripples:
                 raise ContinuationError(f"it rippled ({partner.folds} folds)")
-            a, b = result.events.records(), partner.events.records()
+            a, b = compared(result), compared(partner)
             estimate = difference_estimate(a, solved_on, b, partner_on)
             return _Estimated(result, estimate, (_one_sided(a, b),), result.status)
         except Exception as exc:  # the estimate never costs the result: whatever stopped it
@@ -263,12 +277,12 @@ def _estimate_against_bem(result, partner):
     if partner.status != "ok" or partner.error_estimate is None:
         raise ContinuationError(f"the boundary integral's curve has status {partner.status!r} "
                                 f"({partner.message})")
-    a, b = result.events.records(), partner.events.records()
-    estimate = {k: (DIFFERENCE_FACTOR * abs(a[k] - b[k]) + partner.error_estimate[k]
-                    if None not in (a[k], b[k], partner.error_estimate[k]) else None)
-                for k in ESTIMATED}
-    unestimated = [k for k in ESTIMATED
-                   if None not in (a[k], b[k]) and partner.error_estimate[k] is None]
+    a, b = compared(result), compared(partner)
+    estimate = {k: (DIFFERENCE_FACTOR * abs(a[k] - b[k]) + partner.error_estimate.get(k)
+                    if None not in (a[k], b[k], partner.error_estimate.get(k)) else None)
+                for k in _keys(a)}
+    unestimated = [k for k in _keys(a)
+                   if None not in (a[k], b[k]) and partner.error_estimate.get(k) is None]
     notes = (_one_sided(a, b, other_named="the boundary integral's curve"),
              f"no error estimate for {', '.join(unestimated)}: the boundary integral's own "
              f"estimate has none" if unestimated else "",

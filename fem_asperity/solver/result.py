@@ -61,11 +61,12 @@ class CurveResult:
         stable branches the paths visit, one after the other (`branch` numbers them).
     approach, retraction: the paths under δ̄o control (jumps as consecutive points at equal δ̄o).
     events: `Events` read off the paths. error_estimate: estimated absolute error per event key,
-    in the event's units (None where not estimated); relative_error_estimate holds the same
-    relative to the event. estimated_by: how the estimate was made, 'finer' (the events again
-    on a finer discretisation, `estimate.difference_estimate`), 'bem' (the FE against the boundary
-    integral, `estimate._estimate_against_bem`), 'tolerance' (the last change between refinement
-    levels, `solve.solve_to_tolerance`) or None (no estimate asked for). estimate_floor: the
+    in the event's units (None where not estimated), under a spring also of z_jumps' keys;
+    relative_error_estimate holds the same relative to the event. estimated_by: how the
+    estimate was made, 'finer' (the events again on a finer discretisation,
+    `estimate.difference_estimate`), 'bem' (the FE against the boundary integral,
+    `estimate._estimate_against_bem`), 'tolerance' (the last change between refinement levels,
+    `solve.solve_to_tolerance`) or None (no estimate asked for). estimate_floor: the
     part of each force's estimate that no refinement sees, {force key: 2πRΔγ}: the LJ traction
     beyond the traction grid's last node (`estimate.traction_tail`), added to the estimate.
     dofs, surface_nodes, points, newton_iterations, wall_s: cost.
@@ -126,8 +127,10 @@ class CurveResult:
 
     @property
     def relative_error_estimate(self):
-        """`error_estimate` relative to each event's magnitude (`relative_estimate`)."""
-        return relative_estimate(self.error_estimate, self.events.records())
+        """`error_estimate` relative to each event's magnitude (`relative_estimate`; under a
+        spring, z_jumps' too)."""
+        return relative_estimate(self.error_estimate,
+                                 self.events.records() | (self.z_jumps or {}))
 
     @property
     def ripples(self):
