@@ -10,7 +10,7 @@ from fem_asperity.plumbing.errors import InputError
 from fem_asperity.plumbing.files import output_folder, staged_folder, write_atomic
 from fem_asperity.solver.output import write_all
 
-from .advice import WHOLE, advise
+from .advice import WHOLE, advise, quantity_key, si_unit, value_of
 from .advice import run as run_model
 from .scene import read_scene
 
@@ -52,7 +52,8 @@ def main(argv=None):
     if args.json:
         dump_json(record)
         return 0
-    what = {"pull_off": "the pull-off force", "f_max": "the surface's strength F_max"}
+    what = {"pull_off": "the pull-off force", "f_max": "the surface's strength F_max",
+            "jump_in": "the jump-in's separation", "jump_out": "the jump-out's separation"}
     print(f"Effects on {what[scene.quantity]} (relative):")
     print_table(record["effects"], ("name", "size", "uncertainty", "how"))
     print("\nModels, cheapest first (error: the sum of the effects each leaves out):")
@@ -69,10 +70,11 @@ def _run(advice, record, out, scene_name):
     print(f"running {advice.choice} ...", file=sys.stderr)
     result = run_model(advice)
     if result is not None:
-        s = advice.scene.scales
-        record["result"] = {"model": advice.choice, "value": result.events.p_off,
-                            "value_si": result.events.p_off * s.force, "unit": "N",
-                            "error_estimate": result.error_estimate, "status": result.status}
+        value = value_of(result, quantity_key(advice.scene))
+        to_si, unit = si_unit(advice.scene)
+        record["result"] = {"model": advice.choice, "value": value, "value_si": value * to_si,
+                            "unit": unit, "error_estimate": result.error_estimate,
+                            "status": result.status}
     else:
         chosen = next(m for m in record["models"] if m["name"] == advice.choice)
         record["result"] = {key: chosen[key] for key in ("value", "value_si", "unit", "error")}

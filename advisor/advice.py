@@ -1,19 +1,21 @@
 """The cheapest model of a scene that meets its tolerance, with the measured size of every
-effect a model leaves out (issue 42; so far the pull-off force of a sphere and the F̄max of a
-GW surface).
+effect a model leaves out (issue 42; so far a sphere's pull-off force, its jump-in and jump-out,
+and the F̄max of a GW surface).
 
-Each effect is the relative change of the pull-off force P̄off that one simplification makes,
-for this scene:
+Each effect is the relative change of the quantity asked for that one simplification makes, for
+this scene: the pull-off force P̄off, or the separation of a jump (the sphere's δ̄o under a rigid
+holder, the cantilever's far end z̄ under a spring):
 
-- a closed form (DMT, JKR, Maugis-Dugdale, Wu's eq. 2) or the shipped table of solved laws
-  instead of a solve: read off the table (`gw.law_table`, the retraction's least force at the
-  scene's μ), its own stated error added;
+- a closed form (the pull-off: DMT, JKR, Maugis-Dugdale, Wu's eq. 2; the jump-in: the paper's
+  eqs. 12-13 and the corrected law) or the shipped table of solved laws instead of a solve: read
+  off the table (`gw.law_table`: the retraction's least force, or the δ̄o of its jump, at the
+  scene's μ), its own stated error added; under a spring these answer for a rigid holder;
 - Derjaguin's parabola instead of the exact sphere, a homogeneous half-space instead of the
   layer: computed, each as the difference of two BEM `draft` solves that differ in that one
   thing, its uncertainty twice the draft's error estimate;
 - a rigid holder instead of the cantilever: none on the pull-off force, exactly (the snap-out
-  comes where dP̄/dδ̄o = k̄ > 0, after the least force);
-- the BEM `draft` instead of `default`: the draft solve's own error estimate of P̄off.
+  comes where dP̄/dδ̄o = k̄ > 0, after the least force); on a jump, computed as the two others;
+- the BEM `draft` instead of `default`: the draft solve's own error estimate of the quantity.
 
 For a rough surface's F̄max (GW), the laws are judged against the table and the ground between
 summits counted once in closed form; what GW leaves out beyond those, the summits' elastic
@@ -32,21 +34,46 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from fem_asperity.closed_forms.corrected import CORRECTED_LAWS, MU_JUMP
 from fem_asperity.closed_forms.laws import PAPER_LAWS, wu_pull_off
 from fem_asperity.closed_forms.reference import maugis_dugdale_pull_off
+from fem_asperity.plumbing.errors import InputError
 from fem_asperity.solids.fe import Solid
 from gw.law_table import shipped_table
 
 #: δ̄o samples [ε] on which the table's retraction is searched for its least force: from deep
 #: in contact out beyond every jump-out the table holds (47 at μ = 28.7, `gw.law_table`).
 PULL_OFF_SEARCH = np.linspace(-5.0, 120.0, 250001)
-#: The closed forms of the pull-off: name → P̄off(μ) [2πRΔγ].
+#: What a sphere scene may ask for: the key of its value in a solved curve's events under a
+#: rigid holder, and under a spring (`solver.estimate.compared`).
+PROBE_QUANTITIES = {"pull_off": ("p_off", "p_off"), "jump_in": ("delta_jump_in", "z_jump_in"),
+                    "jump_out": ("delta_jump_out", "z_jump_out")}
+
+
+def _paper_jump_in(mu):
+    """The paper's jump-in δ̄o [ε] (eq. 13: contact at δ̄oc), None where it has none."""
+    events = PAPER_LAWS.events(mu)
+    return float(events.delta_oc) if bool(events.jump_in) else None
+
+
+def _corrected_jump_in(mu):
+    """The corrected law's jump-in δ̄o [ε] (δ̄J, from the onset MU_JUMP on), else None."""
+    return CORRECTED_LAWS.at(mu).delta_jump if mu >= MU_JUMP else None
+
+
+#: The closed forms of each quantity under a rigid holder: name → value(μ) (P̄off [2πRΔγ], a
+#: jump's δ̄o [ε]; None where the form has no such jump). No closed form gives the jump-out's.
 CLOSED_FORMS = {
-    "DMT": lambda mu: -1.0,
-    "JKR": lambda mu: -0.75,
-    "Maugis-Dugdale": lambda mu: float(maugis_dugdale_pull_off(mu=mu).force),
-    "Wu (eq. 2; the paper's and the corrected law's)": lambda mu: float(
-        wu_pull_off(mu, PAPER_LAWS.c_off)),
+    "pull_off": {
+        "DMT": lambda mu: -1.0,
+        "JKR": lambda mu: -0.75,
+        "Maugis-Dugdale": lambda mu: float(maugis_dugdale_pull_off(mu=mu).force),
+        "Wu (eq. 2; the paper's and the corrected law's)": lambda mu: float(
+            wu_pull_off(mu, PAPER_LAWS.c_off)),
+    },
+    "jump_in": {"the paper's (eqs. 12-13)": _paper_jump_in,
+                "the corrected law's": _corrected_jump_in},
+    "jump_out": {},
 }
 
 
@@ -64,7 +91,8 @@ class Effect:
 
 @dataclass(frozen=True)
 class Model:
-    """A way to answer: its value of the quantity asked for (P̄off [2πRΔγ], or F̄max), the
+    """A way to answer: its value of the quantity asked for (P̄off [2πRΔγ], a jump's δ̄o or z̄
+    [ε], or F̄max), the
     effects it leaves out and their summed `error` (relative; None if one is not bounded), and
     its cost in seconds on this machine (measured here where it was run, else None)."""
 
@@ -89,22 +117,43 @@ class Advice:
 
     def records(self):
         """A JSON-ready dict: the scene in SI, the effects, the models (the value
-        dimensionless and in SI: P̄off in N, F̄max as the tension per nominal area in Pa) and
-        the choice."""
-        s, surface = self.scene.scales, self.scene.surface
-        to_si, unit = ((s.force, "N") if surface is None
-                       else (s.force * surface["density"], "Pa"))
+        dimensionless and in SI: P̄off in N, a jump's separation in m, F̄max as the tension per
+        nominal area in Pa) and the choice."""
+        s = self.scene.scales
+        to_si, unit = si_unit(self.scene)
         return {
             "scene": {"mu": s.mu, "R_over_eps": s.R / s.eps, "E_star_Pa": s.E_star,
                       "dgamma_J_per_m2": s.dgamma, "eps_m": s.eps, "R_m": s.R,
                       "spring_N_per_m": self.scene.spring_si,
-                      "layer": _layer_record(self.scene.solid), "surface": surface,
+                      "layer": _layer_record(self.scene.solid), "surface": self.scene.surface,
                       "quantity": self.scene.quantity, "tolerance": self.scene.tolerance},
             "effects": [vars(e) for e in self.effects],
             "models": [{**vars(m), "value_si": None if m.value is None else m.value * to_si,
                         "unit": unit} for m in self.models],
             "choice": self.choice, "message": self.message,
         }
+
+
+def si_unit(scene):
+    """(factor to SI, unit) of the quantity `scene` asks for."""
+    s, surface = scene.scales, scene.surface
+    if surface is not None:
+        return s.force * surface["density"], "Pa"
+    return (s.force, "N") if scene.quantity == "pull_off" else (s.length_z, "m")
+
+
+def quantity_key(scene):
+    """The key of a sphere scene's quantity in a solved curve (`PROBE_QUANTITIES`)."""
+    rigid, spring = PROBE_QUANTITIES[scene.quantity]
+    return rigid if scene.spring is None else spring
+
+
+def value_of(result, key):
+    """The value of `key` in the solved curve `result` (its events and spring jumps), None
+    where it has none."""
+    from fem_asperity.solver.estimate import compared
+
+    return compared(result).get(key)
 
 
 def _layer_record(solid):
@@ -121,9 +170,9 @@ def advise(scene, *, solve=None):
         return _advise_surface(scene)
     if solve is None:
         from fem_asperity.solver.solve import solve_curve as solve
-    mu = scene.mu
+    mu, forms = scene.mu, CLOSED_FORMS[scene.quantity]
     effects, models = [], []
-    table = _table_pull_off(mu)
+    table = _table_value(mu, scene.quantity)
     solved = _solved_effects(scene, solve)
     effects += solved["effects"]
     carried = tuple(e.name for e in solved["effects"] if e.name != DRAFT)
@@ -131,22 +180,28 @@ def advise(scene, *, solve=None):
         note = (f"mu = {mu:.4g} is outside the table of solved laws' "
                 f"{shipped_table().mu_range[0]:g}-{shipped_table().mu_range[1]:g}")
         effects.append(Effect(TABLE, None, None, "table lookup", note))
+    elif table[0] is None:
+        effects.append(Effect(TABLE, None, None, "table lookup",
+                              f"the table's law has no {scene.quantity} at mu = {mu:.4g}"))
     else:
-        p_table, table_error = table
-        effects.append(Effect(TABLE, table_error, None, "the table's stated error of the "
-                              "retraction's force, relative to its P̄off"))
-        for name, law in CLOSED_FORMS.items():
-            p_law = law(mu)
-            effects.append(Effect(_closed(name), abs(p_law / p_table - 1.0), table_error,
-                                  "table lookup (against the solved P̄off)"))
+        value_table, table_error = table
+        effects.append(Effect(TABLE, table_error, None, "the table's stated error of "
+                              + TABLE_VALUE[scene.quantity] + ", relative to it"))
+        for name, law in forms.items():
+            value_law = law(mu)
+            effects.append(Effect(_closed(name), None, None, "table lookup",
+                                  f"the form has no {scene.quantity} at mu = {mu:.4g}")
+                           if value_law is None else
+                           Effect(_closed(name), abs(value_law / value_table - 1.0),
+                                  table_error, "table lookup (against the solved value)"))
     size = {e.name: _with_uncertainty(e) for e in effects}
-    for name, law in CLOSED_FORMS.items():
+    for name, law in forms.items():
         models.append(_model(f"{name} closed form", law(mu), (_closed(name), TABLE) + carried,
                              size, 0.0))
     models.append(_model("table of solved laws", table[0] if table else None,
                          (TABLE,) + carried, size, None))
     draft, default = SOLVES
-    models.append(_model(draft, solved["p_off"], (DRAFT,), size, solved["cost_s"]))
+    models.append(_model(draft, solved["value"], (DRAFT,), size, solved["cost_s"]))
     models.append(Model(default, None, (), None, None))
     return _chosen(scene, effects, models, "no cheaper model is known to meet the tolerance: "
                    "the safe model, the BEM default solve of the whole scene (python -m "
@@ -192,44 +247,67 @@ def _model(name, value, leaves_out, size, cost):
     return Model(name, value, leaves_out, error, cost)
 
 
-def _table_pull_off(mu):
-    """(P̄off, its relative error) of the shipped table's retraction at `mu`, None outside it."""
+#: What the table's error is stated of, per quantity.
+TABLE_VALUE = {"pull_off": "the retraction's force", "jump_in": "the jump-in's δ̄o",
+               "jump_out": "the jump-out's δ̄o"}
+
+
+def _table_value(mu, quantity):
+    """(value, its relative error) of the shipped table at `mu` under a rigid holder: P̄off,
+    the least force of its retraction, or the δ̄o of its jump in or out (value None where its
+    law has no such jump); None outside the table."""
     table = shipped_table()
     lo, hi = table.mu_range
     if not lo <= mu <= hi:
         return None
-    law = table.law(mu, path="retraction")
-    p_off = float(np.min(law.force(PULL_OFF_SEARCH)))
-    return p_off, law.error["force"] / abs(p_off)
+    law = table.law(mu, path="approach" if quantity == "jump_in" else "retraction")
+    if quantity == "pull_off":
+        p_off = float(np.min(law.force(PULL_OFF_SEARCH)))
+        return p_off, law.error["force"] / abs(p_off)
+    if not law.jumps:
+        return None, None
+    delta = float(law.landmarks[1])  # the jump's δ̄o (`gw.law_table.TableLaw`)
+    error = law.error.get("jump")
+    return delta, None if error is None else error / abs(delta)
 
 
 def _solved_effects(scene, solve):
     """The whole scene at BEM `draft` with its estimate, and one draft solve per simplification
-    that applies: {'p_off', 'cost_s', 'effects'}."""
+    that applies: {'value', 'cost_s', 'effects', 'result'}. `InputError` where the whole scene
+    has no value of its quantity (a jump it does not make)."""
     whole = dict(solid=scene.solid, radius_ratio=scene.scales.R / scene.scales.eps,
                  spring_constant=scene.spring)
+    key = quantity_key(scene)
     start = time.perf_counter()
     full = solve(scene.mu, method="bem", accuracy="draft", error_estimate=True, **whole)
     cost = time.perf_counter() - start
-    p_full = full.events.p_off
-    estimate = (full.error_estimate or {}).get("p_off")
-    draft_error = None if estimate is None else estimate / abs(p_full)
+    value = value_of(full, key)
+    if value is None:
+        raise InputError(f"want.quantity: the scene makes no {scene.quantity} (its BEM draft "
+                         f"solve, mu = {scene.mu:.4g}: {full.message})")
+    estimate = (full.error_estimate or {}).get(key)
+    draft_error = None if estimate is None else estimate / abs(value)
+    twice = None if draft_error is None else 2.0 * draft_error
     effects = [Effect(DRAFT, draft_error, None, "the draft solve's own error estimate",
                       "" if estimate is not None else f"no estimate: {full.message}")]
-    if scene.spring is not None:
+    variants = [(DERJAGUIN, {"radius_ratio": None}, key)]
+    if scene.spring is not None and scene.quantity == "pull_off":
         effects.append(Effect(RIGID, 0.0, None, "exact for the pull-off force: the snap-out "
                               "comes where dP/d(delta_o) = k > 0, after the least force"))
-    variants = [(DERJAGUIN, {"radius_ratio": None})]
+    elif scene.spring is not None:  # the rigid holder's δ̄o of the jump against the z̄
+        variants.append((RIGID, {"spring_constant": None}, PROBE_QUANTITIES[scene.quantity][0]))
     if scene.solid.layer_thickness is not None:
         variants.append((HOMOGENEOUS, {"solid": Solid(nu=scene.solid.nu,
-                                                      layer_nu=scene.solid.nu)}))
-    for name, change in variants:
-        other = solve(scene.mu, method="bem", accuracy="draft", error_estimate=False,
-                      **(whole | change))
-        effects.append(Effect(name, abs(other.events.p_off / p_full - 1.0),
-                              None if draft_error is None else 2.0 * draft_error,
+                                                      layer_nu=scene.solid.nu)}, key))
+    for name, change, other_key in variants:
+        other = value_of(solve(scene.mu, method="bem", accuracy="draft", error_estimate=False,
+                               **(whole | change)), other_key)
+        effects.append(Effect(name, None, None, "computed for this scene: two BEM draft solves",
+                              f"without it the scene makes no {scene.quantity}")
+                       if other is None else
+                       Effect(name, abs(other / value - 1.0), twice,
                               "computed for this scene: two BEM draft solves"))
-    return {"p_off": p_full, "cost_s": cost, "effects": effects, "result": full}
+    return {"value": value, "cost_s": cost, "effects": effects, "result": full}
 
 
 #: The rough surface's effects on F̄max and its safe model.

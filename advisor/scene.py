@@ -17,8 +17,9 @@
     [control]                    # optional: a rigid holder (displacement) by default
     spring = "0.5 N/m"           # a cantilever's stiffness
     [want]
-    quantity = "pull_off"        # what the user asks for
-    tolerance = 0.01             # relative
+    quantity = "pull_off"        # what the user asks for: pull_off, jump_in or jump_out (the
+    tolerance = 0.01             # sphere's δ̄o of the jump, the cantilever's z̄ under a spring);
+                                 # tolerance: relative
 
 A rough surface (GW: spherical summits of one radius at Gaussian heights) takes the place of the
 probe, and its strength F̄max is asked for (no layer or cantilever yet):
@@ -39,6 +40,7 @@ import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
+from fem_asperity.closed_forms.corrected import MU_JUMP
 from fem_asperity.closed_forms.scales import Scales, effective_modulus
 from fem_asperity.plumbing.checks import in_range, poisson
 from fem_asperity.plumbing.errors import DerjaguinWarning, InputError
@@ -69,11 +71,15 @@ SECTIONS = {
     "adhesion": {"work": ("energy per area", True), "eps": ("length", True)},
     "layer": {"thickness": ("length", True), "E": ("pressure", True), "nu": ("ratio", False)},
     "control": {"spring": ("stiffness", False)},
-    "want": {"quantity": (("pull_off", "f_max"), True), "tolerance": ("ratio", True)},
+    "want": {"quantity": (("pull_off", "jump_in", "jump_out", "f_max"), True),
+             "tolerance": ("ratio", True)},
 }
 REQUIRED_SECTIONS = ("solid", "adhesion", "want")
 #: What each body may be asked for.
-QUANTITIES = {"probe": "pull_off", "surface": "f_max"}
+QUANTITIES = {"probe": ("pull_off", "jump_in", "jump_out"), "surface": ("f_max",)}
+#: Below the jump-in's onset a sphere on a rigid holder neither jumps in nor out
+#: (`closed_forms.corrected.MU_JUMP`; test_advisor.py refuses such a scene).
+JUMPS = ("jump_in", "jump_out")
 #: The Poisson's ratio where a scene gives none (the package's default, `Solid`).
 DEFAULT_NU = 0.3
 _VALUE = re.compile(r"^\s*([-+0-9.eE]+)\s*(\S+)\s*$")
@@ -123,8 +129,9 @@ def parse_scene(text):
     if len(bodies) != 1:
         raise InputError("probe, surface: give one of the two (a sphere, or a rough surface)")
     body = bodies[0]
-    if values["want"]["quantity"] != QUANTITIES[body]:
-        raise InputError(f"want.quantity: a {body} scene asks for {QUANTITIES[body]}")
+    if values["want"]["quantity"] not in QUANTITIES[body]:
+        raise InputError(f"want.quantity: a {body} scene asks for "
+                         f"{' or '.join(QUANTITIES[body])}")
     if body == "surface":
         for other in ("layer", "control"):
             if other in values:
@@ -160,6 +167,10 @@ def parse_scene(text):
         _check_surface(values["surface"], scales)
     else:
         solvable_mu(scales.mu, "the scene's mu (from solid, probe and adhesion)")
+        if want["quantity"] in JUMPS and "spring" not in control and scales.mu < MU_JUMP:
+            raise InputError(f"want.quantity: {want['quantity']}: on a rigid holder the sphere "
+                             f"jumps only above mu = {MU_JUMP:g} (the scene's mu = "
+                             f"{scales.mu:.4g}); give the cantilever ([control] spring)")
     return Scene(scales=scales, solid=_solid(layer, nu, scales), spring=_spring(control, scales),
                  spring_si=control.get("spring"), quantity=want["quantity"],
                  tolerance=_tolerance(want["tolerance"]), source=text,
