@@ -316,6 +316,7 @@ PAPER_LAW, CORRECTED_LAW = ("the paper's law instead of the solved law",
 GROUND = "GW's ground between summits counted more than once"
 INTERACTION = "summits that do not feel each other (GW) instead of the surface solved whole"
 WHOLE = "the surface solved whole (python -m gw explicit on a height map)"
+STATISTICS = "the map's summits counted (σ_s, R, η) instead of its spectral moments"
 
 
 def _advise_surface(scene):
@@ -325,12 +326,12 @@ def _advise_surface(scene):
     map (`_interaction`), unbounded outside it."""
     from gw.integrate import strength
     from gw.laws import CorrectedLaw, PaperLaw
-    from gw.surface import RoughSurface
+
+    from .scene import rough_surface
 
     s, surface = scene.scales, scene.surface
     sigma_r_eta = surface["sigma"] * s.R * surface["density"]
-    rough = RoughSurface.from_physical(sigma=surface["sigma"], radius=s.R,
-                                       density=surface["density"], eps=s.eps)
+    rough = rough_surface(surface, s)
     table = shipped_table()
     lo, hi = table.mu_range
     effects = [_interaction(scene.mu, surface["sigma"] / s.eps, sigma_r_eta)]
@@ -362,20 +363,48 @@ def _advise_surface(scene):
         effects += [Effect(name, None, None, "table lookup", f"mu = {scene.mu:.4g} is outside "
                            f"the table of solved laws' {lo:g}-{hi:g}")
                     for name in (TABLE, PAPER_LAW, CORRECTED_LAW, GROUND)]
+    measured = ()
+    if "spectral" in surface:
+        effects.append(_statistics_effect(scene, f_table, table))
+        measured = (STATISTICS,)
     size = {e.name: _with_uncertainty(e) for e in effects}
     models = (
-        _model("GW, the paper's law", f_paper, (PAPER_LAW, TABLE, GROUND, INTERACTION), size,
-               cost["paper"]),
+        _model("GW, the paper's law", f_paper, (PAPER_LAW, TABLE, GROUND, INTERACTION)
+               + measured, size, cost["paper"]),
         _model("GW, the corrected law", f_corrected, (CORRECTED_LAW, TABLE, GROUND,
-                                                      INTERACTION), size, cost["corrected"]),
-        _model("GW, the table of solved laws", f_table, (TABLE, GROUND, INTERACTION), size,
-               cost.get("table")),
-        _model("GW, the table, the ground counted once", f_once, (TABLE, INTERACTION), size,
-               cost.get("once")),
+                                                      INTERACTION) + measured, size,
+               cost["corrected"]),
+        _model("GW, the table of solved laws", f_table, (TABLE, GROUND, INTERACTION) + measured,
+               size, cost.get("table")),
+        _model("GW, the table, the ground counted once", f_once, (TABLE, INTERACTION)
+               + measured, size, cost.get("once")),
         Model(WHOLE, None, (), None, None))
     return _chosen(scene, effects, models, "no GW model is known to meet the tolerance (the "
                    "effects each leaves out sum to more, or one is not bounded here): the safe "
                    f"model is {WHOLE}")
+
+
+def _statistics_effect(scene, f_counted, table):
+    """How far GW's strength moves where the map's spectral moments give σ_s, R, η instead of
+    its counted summits: the tension F̄max·2πRΔγη [Pa] both ways, GW with the table's law (at
+    each R's own μ); unbounded outside the table."""
+    from gw.integrate import strength
+    from gw.surface import RoughSurface
+
+    s, surface = scene.scales, scene.surface
+    spectral = surface["spectral"]
+    mu = s.mu * (spectral["radius"] / s.R) ** (1.0 / 3.0)  # μ³ ∝ R
+    lo, hi = table.mu_range
+    if f_counted is None or not lo <= mu <= hi:
+        return Effect(STATISTICS, None, None, "GW with the table's law both ways",
+                      f"mu = {scene.mu:.4g} or {mu:.4g} is outside the table of solved laws")
+    f_spectral = strength(table.law(mu), RoughSurface(zeta=spectral["sigma"] / s.eps,
+                                                      omega=surface["omega"])).f_max
+    tension = f_spectral * spectral["radius"] * spectral["density"]
+    counted = f_counted * s.R * surface["density"]
+    return Effect(STATISTICS, abs(tension / counted - 1.0), None,
+                  "computed for this map: GW with the table's law on both statistics "
+                  f"({surface['summits']} summits counted at the pixel {surface['pixel']:.3g} m)")
 
 
 def _interaction(mu, zeta, sigma_r_eta):

@@ -31,6 +31,13 @@ probe, and its strength F̄max is asked for (no layer or cantilever yet):
     [want]
     quantity = "f_max"
 
+or a measured height map in their place, its GW parameters counted on its summits (as
+`python -m gw explicit` counts them: σ_s, R, η; ω = 1), a path relative to the scene file:
+
+    [surface]
+    topography = "afm_scan.npy"  # heights in m (.npy), or any SurfaceTopography format
+    pixel = "2 nm"               # the pixel of a .npy map
+
 A bad file is refused (`InputError`, one line naming the key) before anything is computed.
 """
 
@@ -62,12 +69,13 @@ UNITS = {
     "per area": {"/m^2": 1.0, "/um^2": 1e12, "/µm^2": 1e12, "/nm^2": 1e18},
 }
 #: The keys of each section: (kind of value, required). Kinds: a unit kind of UNITS, 'ratio'
-#: (a plain number), or a tuple of the words allowed.
+#: (a plain number), 'path' (a file), or a tuple of the words allowed.
 SECTIONS = {
     "solid": {"E": ("pressure", False), "E_star": ("pressure", False), "nu": ("ratio", False)},
     "probe": {"radius": ("length", True), "E": ("pressure", False), "nu": ("ratio", False)},
-    "surface": {"sigma": ("length", True), "radius": ("length", True),
-                "density": ("per area", True)},
+    "surface": {"sigma": ("length", False), "radius": ("length", False),
+                "density": ("per area", False), "topography": ("path", False),
+                "pixel": ("length", False)},
     "adhesion": {"work": ("energy per area", True), "eps": ("length", True)},
     "layer": {"thickness": ("length", True), "E": ("pressure", True), "nu": ("ratio", False)},
     "control": {"spring": ("stiffness", False)},
@@ -115,11 +123,12 @@ def read_scene(path):
         raise InputError(f"scene file {path}: {exc.strerror or exc}") from None
     except UnicodeDecodeError:
         raise InputError(f"scene file {path}: not UTF-8 text (TOML is)") from None
-    return parse_scene(text)
+    return parse_scene(text, folder=path.parent)
 
 
-def parse_scene(text):
-    """The `Scene` of a scene file's TOML `text`."""
+def parse_scene(text, folder=None):
+    """The `Scene` of a scene file's TOML `text`; a file it names is relative to `folder`
+    (the scene file's; None: the current folder)."""
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -136,6 +145,7 @@ def parse_scene(text):
         for other in ("layer", "control"):
             if other in values:
                 raise InputError(f"{other}: a rough surface scene takes none yet")
+        values["surface"] = _surface(values["surface"], folder)
         values["probe"] = {"radius": values["surface"]["radius"]}
     solid, probe, adhesion = values["solid"], values["probe"], values["adhesion"]
     layer, control, want = values.get("layer"), values.get("control", {}), values["want"]
@@ -208,6 +218,10 @@ def _value(name, value, kind):
         if value not in kind:
             raise InputError(f"{name}: must be one of {', '.join(kind)}; got {value!r}")
         return value
+    if kind == "path":
+        if not isinstance(value, str) or not value.strip():
+            raise InputError(f"{name}: must be a file name; got {value!r}")
+        return value
     if kind == "ratio":
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise InputError(f"{name}: must be a number; got {value!r}")
@@ -266,16 +280,61 @@ def _spring(control, scales):
                     why=SOFT_SPRING) * per
 
 
-def _check_surface(surface, scales):
-    """The GW surface of `surface` as `gw` takes it (ζ = σ/ε, ω from σRη), refused naming the
-    section where it does not."""
+GW_KEYS = ("sigma", "radius", "density")
+
+
+def _surface(surface, folder):
+    """The [surface] section as GW takes it: σ, R, η as given, or counted on the summits of the
+    `topography` (σ_s, R, η, ω = 1, as `gw explicit` does), with the spectral moments' σ_s, R, η
+    beside (`spectral`) and where the map came from."""
+    given = [key for key in GW_KEYS if key in surface]
+    if "topography" not in surface:
+        missing = [key for key in GW_KEYS if key not in surface]
+        if missing:
+            raise InputError(f"surface.{missing[0]}: missing (or give a topography)")
+        if "pixel" in surface:
+            raise InputError("surface.pixel: the pixel of a topography; there is none")
+        return surface
+    if given:
+        raise InputError(f"surface.{given[0]}: give sigma, radius and density or a topography, "
+                         "not both")
+    from gw.explicit.topography import (
+        read_topography,
+        spectral_summit_statistics,
+        summit_statistics,
+    )
+
+    path = Path(folder or ".") / surface["topography"]
+    try:
+        topography = read_topography(path, pixel=surface.get("pixel"))
+        counted, spectral = summit_statistics(topography), spectral_summit_statistics(topography)
+    except InputError as exc:
+        raise InputError(f"surface.topography: {exc}") from None
+    return {"sigma": counted.sigma_s, "radius": counted.radius, "density": counted.density,
+            "omega": 1.0, "topography": str(path), "pixel": topography.pixel,
+            "summits": counted.count,
+            "spectral": {"sigma": spectral.sigma_s, "radius": spectral.radius,
+                         "density": spectral.density}}
+
+
+def rough_surface(surface, scales):
+    """The `gw.surface.RoughSurface` of a scene's `surface`: ζ = σ/ε, ω given (a topography's)
+    or McCool's from σRη (eq. 20)."""
     from gw.surface import RoughSurface
 
+    if "omega" in surface:
+        return RoughSurface(zeta=surface["sigma"] / scales.eps, omega=surface["omega"])
+    return RoughSurface.from_physical(sigma=surface["sigma"], radius=scales.R,
+                                      density=surface["density"], eps=scales.eps)
+
+
+def _check_surface(surface, scales):
+    """The GW surface of `surface` as `gw` takes it (`rough_surface`), refused naming the
+    section where it does not."""
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         try:
-            RoughSurface.from_physical(sigma=surface["sigma"], radius=scales.R,
-                                       density=surface["density"], eps=scales.eps)
+            rough_surface(surface, scales)
         except (InputError, ArithmeticError, Warning) as exc:
             raise InputError(f"surface: {exc}") from None
 

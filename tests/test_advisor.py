@@ -11,7 +11,7 @@ from types import SimpleNamespace
 import pytest
 
 from advisor import advise, parse_scene, read_scene
-from advisor.advice import DERJAGUIN, DRAFT, HOMOGENEOUS, RIGID, TABLE
+from advisor.advice import DERJAGUIN, DRAFT, HOMOGENEOUS, RIGID, STATISTICS, TABLE
 from fem_asperity import InputError, solve_curve
 from fem_asperity.closed_forms.reference import dmt_pull_off
 from fem_asperity.solids.fe import Solid
@@ -399,3 +399,70 @@ def test_a_jump_on_a_rigid_holder_below_the_onset_is_refused():
     with pytest.raises(InputError, match="want.quantity: jump_in: on a rigid holder"):
         parse_scene(near_dmt)
     assert parse_scene(near_dmt.replace("[want]", "[control]\nspring = \"1 N/m\"\n[want]"))
+
+
+MAP_SCENE = """
+[solid]
+E = "1 GPa"
+nu = 0
+[surface]
+topography = "scan/map.npy"
+pixel = "2 nm"
+[adhesion]
+work = "100 mJ/m^2"
+eps = "1 nm"
+[want]
+quantity = "f_max"
+tolerance = 0.1
+"""
+
+
+@pytest.fixture
+def measured_map(tmp_path):
+    """A scene file beside a height map of caps of R = 100 nm at Gaussian heights (σ = 2 nm,
+    η = 250 /µm², 128² pixels of 2 nm), named relative to the scene file."""
+    import numpy as np
+
+    from gw.explicit.topography import gaussian_caps
+
+    topography, _ = gaussian_caps(n=128, pixel=2e-9, radius=100e-9, sigma=2e-9,
+                                  density=250e12, seed=1, periodic=False)
+    (tmp_path / "scan").mkdir()
+    np.save(tmp_path / "scan" / "map.npy", topography.heights)
+    scene = tmp_path / "scene.toml"
+    scene.write_text(MAP_SCENE)
+    return scene
+
+
+def test_a_measured_map_is_a_scene_its_summits_counted_and_its_spectrum_beside(measured_map):
+    """A topography in place of σ, R, η: its summits counted as `gw explicit` counts them (the
+    caps' own R, exact for paraboloids; η over the inner pixels; ω = 1), μ at that R; the
+    spectral moments' statistics beside, and how far GW's strength moves with them is an
+    effect every GW model leaves out (on caps between a flat floor the spectrum is far off)."""
+    scene = read_scene(measured_map)
+    surface = scene.surface
+    assert surface["radius"] == pytest.approx(100e-9, rel=1e-9)
+    assert scene.scales.R == pytest.approx(100e-9, rel=1e-9) and surface["omega"] == 1.0
+    assert 10 <= surface["summits"] <= 16
+    assert surface["density"] == pytest.approx(surface["summits"] / (126 * 2e-9) ** 2)
+    advice = advise(scene)
+    effect = next(e for e in advice.effects if e.name == STATISTICS)
+    assert effect.size > 0.5 and "summits counted" in effect.how
+    for model in advice.models:
+        assert (STATISTICS in model.leaves_out) == model.name.startswith("GW")
+    json.dumps(advice.records(), allow_nan=False)
+
+
+@pytest.mark.parametrize("edit, named", [
+    (("pixel = \"2 nm\"", "pixel = \"2 nm\"\nsigma = \"2 nm\""), "surface.sigma: give sigma"),
+    (("scan/map.npy", "scan/none.npy"), "surface.topography: .*no such file"),
+    (("pixel = \"2 nm\"\n", ""), "surface.topography: .*pixel"),
+    (("topography = \"scan/map.npy\"\n", ""), "surface.sigma: missing"),
+    (("topography = \"scan/map.npy\"", "topography = 3"), "surface.topography: must be a file"),
+    (("topography = \"scan/map.npy\"",
+      "sigma = \"2 nm\"\nradius = \"100 nm\"\ndensity = \"250 /um^2\""), "surface.pixel"),
+])
+def test_a_bad_map_scene_is_refused_naming_its_key(measured_map, edit, named):
+    measured_map.write_text(MAP_SCENE.replace(*edit))
+    with pytest.raises(InputError, match=named):
+        read_scene(measured_map)
