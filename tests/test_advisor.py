@@ -401,20 +401,9 @@ def test_a_jump_on_a_rigid_holder_below_the_onset_is_refused():
     assert parse_scene(near_dmt.replace("[want]", "[control]\nspring = \"1 N/m\"\n[want]"))
 
 
-MAP_SCENE = """
-[solid]
-E = "1 GPa"
-nu = 0
-[surface]
-topography = "scan/map.npy"
-pixel = "2 nm"
-[adhesion]
-work = "100 mJ/m^2"
-eps = "1 nm"
-[want]
-quantity = "f_max"
-tolerance = 0.1
-"""
+#: The scene inside the map with a height map of its own in place of σ, R, η.
+MAP_SCENE = INSIDE_THE_MAP.replace("sigma = \"2 nm\"\nradius = \"100 nm\"\ndensity = \"250 /um^2\"",
+                                   "topography = \"scan/map.npy\"\npixel = \"2 nm\"")
 
 
 @pytest.fixture
