@@ -56,6 +56,9 @@ def main(argv=None):
             "jump_in": "the jump-in's separation", "jump_out": "the jump-out's separation"}
     print(f"Effects on {what[scene.quantity]} (relative):")
     print_table(record["effects"], ("name", "size", "uncertainty", "how"))
+    for effect in record["effects"]:
+        if effect["size"] is None:
+            print(f"not bounded here: {effect['name']}: {effect['note']}")
     print("\nModels, cheapest first (error: the sum of the effects each leaves out):")
     print_table(record["models"], ("name", "value", "value_si", "unit", "error", "cost_s"))
     print(f"\nchoice: {advice.message}")

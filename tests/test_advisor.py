@@ -83,6 +83,13 @@ def test_the_command_line_refuses_a_bad_file_in_one_line_and_solves_nothing(tmp_
     assert "probe.radius" in done.stderr and "solving" not in done.stderr
 
 
+@pytest.mark.parametrize("path", sorted(EXAMPLES.glob("*.toml")), ids=lambda p: p.name)
+def test_every_example_scene_reads(path):
+    """Each scene file in examples/ is a valid scene (`python -m validation advisor` advises
+    them all)."""
+    assert read_scene(path).tolerance > 0.0
+
+
 def test_the_scene_in_the_packages_terms():
     """μ from eq. 1 (with E* of two bodies where the probe is elastic), R/ε, the layer in
     √(Rε), k̄ in 2πRΔγ/ε."""
