@@ -75,9 +75,13 @@ def _run(advice, record, out, scene_name):
     if result is not None:
         value = value_of(result, quantity_key(advice.scene))
         to_si, unit = si_unit(advice.scene)
-        record["result"] = {"model": advice.choice, "value": value, "value_si": value * to_si,
+        record["result"] = {"model": advice.choice, "value": value,
+                            "value_si": None if value is None else value * to_si,
                             "unit": unit, "error_estimate": result.error_estimate,
-                            "status": result.status}
+                            "status": result.status, "message": result.message}
+        if value is None:  # written all the same: the solve's files say what it found
+            print(f"warning: {advice.choice} makes no {advice.scene.quantity}: "
+                  f"{result.message}", file=sys.stderr)
     else:
         chosen = next(m for m in record["models"] if m["name"] == advice.choice)
         record["result"] = {key: chosen[key] for key in ("value", "value_si", "unit", "error")}

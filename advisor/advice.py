@@ -186,7 +186,8 @@ def advise(scene, *, solve=None):
     else:
         value_table, table_error = table
         effects.append(Effect(TABLE, table_error, None, "the table's stated error of "
-                              + TABLE_VALUE[scene.quantity] + ", relative to it"))
+                              + TABLE_VALUE[scene.quantity] + ", relative to it",
+                              "" if table_error is not None else "the table states none here"))
         for name, law in forms.items():
             value_law = law(mu)
             effects.append(Effect(_closed(name), None, None, "table lookup",
@@ -364,7 +365,7 @@ def _advise_surface(scene):
                            f"the table of solved laws' {lo:g}-{hi:g}")
                     for name in (TABLE, PAPER_LAW, CORRECTED_LAW, GROUND)]
     measured = ()
-    if "spectral" in surface:
+    if "spectral" in surface and "none" not in surface["spectral"]:  # (none: `scene._surface`)
         effects.append(_statistics_effect(scene, f_table, table))
         measured = (STATISTICS,)
     size = {e.name: _with_uncertainty(e) for e in effects}

@@ -47,12 +47,19 @@ import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 from fem_asperity.closed_forms.corrected import MU_JUMP
 from fem_asperity.closed_forms.scales import Scales, effective_modulus
 from fem_asperity.plumbing.checks import in_range, poisson
 from fem_asperity.plumbing.errors import DerjaguinWarning, InputError
 from fem_asperity.solids.fe import LAYER_THICKNESS, Solid
-from fem_asperity.solver.solve import SOFT_SPRING, SPRING_RANGE, solvable_mu
+from fem_asperity.solver.solve import (
+    SOFT_SPRING,
+    SPRING_RANGE,
+    WHOLE_CURVE_MU_MAX,
+    solvable_mu,
+)
 
 try:  # Python 3.11+
     import tomllib
@@ -171,16 +178,19 @@ def parse_scene(text, folder=None):
                                                       nu2=probe.get("nu"))
     with warnings.catch_warnings():  # R/ε < 300: the advice measures Derjaguin's effect
         warnings.simplefilter("ignore", DerjaguinWarning)
-        scales = Scales(E_star=E_star, dgamma=adhesion["work"], eps=adhesion["eps"],
-                        R=probe["radius"])
+        try:
+            scales = Scales(E_star=E_star, dgamma=adhesion["work"], eps=adhesion["eps"],
+                            R=probe["radius"])
+        except InputError as exc:
+            if "topography" not in values.get("surface", {}):
+                raise
+            raise InputError(f"surface.topography: the summits' radius {probe['radius']:.3g} m "
+                             f"(heights in m?): {exc}") from None
     if body == "surface":
         _check_surface(values["surface"], scales)
     else:
         solvable_mu(scales.mu, "the scene's mu (from solid, probe and adhesion)")
-        if want["quantity"] in JUMPS and "spring" not in control and scales.mu < MU_JUMP:
-            raise InputError(f"want.quantity: {want['quantity']}: on a rigid holder the sphere "
-                             f"jumps only above mu = {MU_JUMP:g} (the scene's mu = "
-                             f"{scales.mu:.4g}); give the cantilever ([control] spring)")
+        _check_jumps(want["quantity"], control, layer, scales.mu)
     return Scene(scales=scales, solid=_solid(layer, nu, scales), spring=_spring(control, scales),
                  spring_si=control.get("spring"), quantity=want["quantity"],
                  tolerance=_tolerance(want["tolerance"]), source=text,
@@ -281,6 +291,9 @@ def _spring(control, scales):
 
 
 GW_KEYS = ("sigma", "radius", "density")
+#: Summits whose heights spread by less than this share of the map's range are of one height
+#: (caps of one height spread by rounding, 1e-40 m): GW needs a spread; test_advisor.py.
+SAME_HEIGHT = 1e-9
 
 
 def _surface(surface, folder):
@@ -307,14 +320,22 @@ def _surface(surface, folder):
     path = Path(folder or ".") / surface["topography"]
     try:
         topography = read_topography(path, pixel=surface.get("pixel"))
-        counted, spectral = summit_statistics(topography), spectral_summit_statistics(topography)
+        counted = summit_statistics(topography)
     except InputError as exc:
         raise InputError(f"surface.topography: {exc}") from None
+    one_height = counted.sigma_s <= SAME_HEIGHT * float(np.ptp(topography.heights))
+    if counted.count < 2 or one_height or not counted.radius > 0:
+        raise InputError(f"surface.topography: the map holds {counted.count} summit(s) of one "
+                         f"height or of no positive mean radius: GW needs summits of different "
+                         "heights (as python -m gw explicit)")
+    try:  # optional, as in `gw explicit`: a map dominated by a tilt has none
+        found = spectral_summit_statistics(topography)
+        spectral = {"sigma": found.sigma_s, "radius": found.radius, "density": found.density}
+    except InputError as exc:
+        spectral = {"none": str(exc)}
     return {"sigma": counted.sigma_s, "radius": counted.radius, "density": counted.density,
             "omega": 1.0, "topography": str(path), "pixel": topography.pixel,
-            "summits": counted.count,
-            "spectral": {"sigma": spectral.sigma_s, "radius": spectral.radius,
-                         "density": spectral.density}}
+            "summits": counted.count, "spectral": spectral}
 
 
 def rough_surface(surface, scales):
@@ -326,6 +347,21 @@ def rough_surface(surface, scales):
         return RoughSurface(zeta=surface["sigma"] / scales.eps, omega=surface["omega"])
     return RoughSurface.from_physical(sigma=surface["sigma"], radius=scales.R,
                                       density=surface["density"], eps=scales.eps)
+
+
+def _check_jumps(quantity, control, layer, mu):
+    """Refuse a jump asked of a homogeneous scene on a rigid holder below the onset (a layer
+    softer than the substrate may jump there: its draft solve says), or of a cantilever above
+    the largest μ whose whole curve is traced."""
+    if quantity not in JUMPS and "spring" not in control:
+        return
+    if "spring" in control and mu > WHOLE_CURVE_MU_MAX:
+        raise InputError(f"control.spring: a cantilever's curve is traced whole, up to mu = "
+                         f"{WHOLE_CURVE_MU_MAX:g}; the scene's mu = {mu:.4g}")
+    if quantity in JUMPS and "spring" not in control and layer is None and mu < MU_JUMP:
+        raise InputError(f"want.quantity: {quantity}: on a rigid holder the sphere jumps only "
+                         f"above mu = {MU_JUMP:g} (the scene's mu = {mu:.4g}); give the "
+                         "cantilever ([control] spring)")
 
 
 def _check_surface(surface, scales):

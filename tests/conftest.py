@@ -5,7 +5,9 @@ surface) is a deterministic function of its discretisation and solid and is not 
 solve, so tests that solve on the same one share it: the finer half-space of the estimate at
 μ = 5 took 26 s to build, and test_near_events.py built it twice, for the events near the curve's
 and for the whole finer solve. The cache holds the last HALF_SPACES built (a `fine` one holds
-a sparse LU of its whole mesh).
+a sparse LU of its whole mesh). A hit skips `elastic`'s own checks (FE_MAX_SURFACE_ELEMENTS):
+a test that lowers such a limit must build a discretisation no earlier test built. A solve that
+changed a half-space would leak into later tests: none does (its matrices are only read).
 """
 
 import threading

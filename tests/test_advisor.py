@@ -462,3 +462,51 @@ def test_a_bad_map_scene_is_refused_naming_its_key(measured_map, edit, named):
     measured_map.write_text(MAP_SCENE.replace(*edit))
     with pytest.raises(InputError, match=named):
         read_scene(measured_map)
+
+
+def test_the_jump_checks_know_a_layer_and_a_cantilevers_range():
+    """A soft coating may jump on a rigid holder although the substrate's μ is below the onset:
+    such a scene is taken (its draft solve says); a cantilever above the largest μ whose whole
+    curve is traced is refused naming control.spring."""
+    coated = POLYMER.replace(*RIGID_HOLDER).replace(
+        "E = \"1 GPa\"", "E = \"20 GPa\"").replace(
+        "[want]", "[layer]\nthickness = \"10 nm\"\nE = \"1 GPa\"\n[want]")
+    scene = parse_scene(coated)
+    assert scene.mu < 0.69 and scene.solid.layer_thickness is not None
+    stiff = POLYMER.replace("work = \"50 mJ/m^2\"", "work = \"2 J/m^2\"")
+    with pytest.raises(InputError, match="control.spring: a cantilever's curve is traced whole"):
+        parse_scene(stiff)
+
+
+def _two_equal_caps():
+    """64² pixels of 2 nm: two caps of R = 100 nm, apexes at pixel centres, of one height."""
+    import numpy as np
+
+    x = np.arange(64) * 2e-9
+    X, Y = np.meshgrid(x, x, indexing="ij")
+    caps = [-((X - x[k]) ** 2 + (Y - x[k]) ** 2) / 200e-9 for k in (16, 48)]
+    return np.maximum(np.max(caps, axis=0), -5e-9)
+
+
+def _caps_in_nanometres():
+    """GW caps (R = 100 nm) with their heights stored in nm instead of m."""
+    from gw.explicit.topography import gaussian_caps
+
+    topography, _ = gaussian_caps(n=64, pixel=2e-9, radius=100e-9, sigma=2e-9, density=250e12,
+                                  periodic=False)
+    return topography.heights * 1e9
+
+
+@pytest.mark.parametrize("heights, named", [
+    (_two_equal_caps, "surface.topography: the map holds 2 summit"),
+    (_caps_in_nanometres, r"surface.topography: the summits' radius .*heights in m\?"),
+])
+def test_a_map_gw_cannot_take_is_refused_naming_the_topography(tmp_path, heights, named):
+    import numpy as np
+
+    (tmp_path / "scan").mkdir()
+    np.save(tmp_path / "scan" / "map.npy", heights())
+    scene = tmp_path / "scene.toml"
+    scene.write_text(MAP_SCENE)
+    with pytest.raises(InputError, match=named):
+        read_scene(scene)

@@ -1,4 +1,4 @@
-"""Reading events off sampled curves (`path.curve`)."""
+"""Reading events off sampled curves (`curves.events`)."""
 
 import numpy as np
 import pytest

@@ -12,8 +12,8 @@ the finer fold. The long stretches between events (the approach into deep contac
 are not traced again.
 
 What this cannot see: a jump the finer discretisation makes and the curve does not (a shallow
-fold near the onset of jump-in); the whole finer solve (`solver.solve.solve_discretised`) finds
-those.
+fold near the onset of jump-in); the whole finer solve
+(`solver.discretised.solve_discretised`) finds those.
 """
 
 import threading

@@ -60,10 +60,10 @@ def compared(result):
     return result.events.records() | (result.z_jumps or {})
 
 
-def _keys(a):
-    """The keys estimated of the compared values `a`: ESTIMATED, and SPRING_JUMPS under a
-    spring."""
-    return (*ESTIMATED, *(k for k in SPRING_JUMPS if k in a))
+def _keys(a, b):
+    """The keys estimated of the compared values `a` and `b`: ESTIMATED, and SPRING_JUMPS where
+    either is under a spring."""
+    return (*ESTIMATED, *(k for k in SPRING_JUMPS if k in a or k in b))
 
 
 def difference_estimate(a, disc, b, partner_disc):
@@ -77,15 +77,16 @@ def difference_estimate(a, disc, b, partner_disc):
     fraction 1 − 2^(−p) of the error), overstating it by at most 2 in the asymptotic range.
     Against a coarser one (r = 2, `solve_to_tolerance`) it is the difference itself."""
     scale = 1.0 / abs(partner_disc.h_surface / disc.h_surface - 1.0)
-    return {k: (scale * abs(a[k] - b[k]) if a[k] is not None and b[k] is not None else None)
-            for k in _keys(a)}
+    return {k: (scale * abs(a[k] - b[k]) if a.get(k) is not None and b.get(k) is not None
+                else None)
+            for k in _keys(a, b)}
 
 
 def _one_sided(a, b, other_named="its finer estimate discretisation"):
     """The clause naming the estimated events (records `a` of the solve, `b` of the other solve,
     `other_named`) that one of the two has and the other not (a jump one discretisation finds
     and the other misses): their estimate is None. "" where there are none."""
-    keys = [k for k in _keys(a) if (a[k] is None) != (b[k] is None)]
+    keys = [k for k in _keys(a, b) if (a.get(k) is None) != (b.get(k) is None)]
     if not keys:
         return ""
     return (f"{', '.join(keys)} found by only one of the solve and {other_named} (no "
@@ -278,11 +279,12 @@ def _estimate_against_bem(result, partner):
         raise ContinuationError(f"the boundary integral's curve has status {partner.status!r} "
                                 f"({partner.message})")
     a, b = compared(result), compared(partner)
+    keys = _keys(a, b)
     estimate = {k: (DIFFERENCE_FACTOR * abs(a[k] - b[k]) + partner.error_estimate.get(k)
-                    if None not in (a[k], b[k], partner.error_estimate.get(k)) else None)
-                for k in _keys(a)}
-    unestimated = [k for k in _keys(a)
-                   if None not in (a[k], b[k]) and partner.error_estimate.get(k) is None]
+                    if None not in (a.get(k), b.get(k), partner.error_estimate.get(k)) else None)
+                for k in keys}
+    unestimated = [k for k in keys
+                   if None not in (a.get(k), b.get(k)) and partner.error_estimate.get(k) is None]
     notes = (_one_sided(a, b, other_named="the boundary integral's curve"),
              f"no error estimate for {', '.join(unestimated)}: the boundary integral's own "
              f"estimate has none" if unestimated else "",
