@@ -317,7 +317,7 @@ def _surface(surface, folder):
         summit_statistics,
     )
 
-    path = Path(folder or ".") / surface["topography"]
+    path = (Path(folder or ".") / surface["topography"]).resolve()  # recorded in advice.json
     try:
         topography = read_topography(path, pixel=surface.get("pixel"))
         counted = summit_statistics(topography)
