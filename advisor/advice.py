@@ -45,7 +45,7 @@ from gw.law_table import shipped_table
 #: in contact out beyond every jump-out the table holds (47 at μ = 28.7, `gw.law_table`).
 PULL_OFF_SEARCH = np.linspace(-5.0, 120.0, 250001)
 #: What a sphere scene may ask for: the key of its value in a solved curve's events under a
-#: rigid holder, and under a spring (`solver.estimate.compared`).
+#: rigid holder, and under a spring (`CurveResult.values`).
 PROBE_QUANTITIES = {"pull_off": ("p_off", "p_off"), "jump_in": ("delta_jump_in", "z_jump_in"),
                     "jump_out": ("delta_jump_out", "z_jump_out")}
 
@@ -151,9 +151,7 @@ def quantity_key(scene):
 def value_of(result, key):
     """The value of `key` in the solved curve `result` (its events and spring jumps), None
     where it has none."""
-    from fem_asperity.solver.estimate import compared
-
-    return compared(result).get(key)
+    return result.values().get(key)
 
 
 def _layer_record(solid):

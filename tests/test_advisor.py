@@ -165,8 +165,8 @@ def test_outside_the_table_no_closed_form_is_chosen_and_the_safe_model_is_said()
         parse_scene(GOOD.replace("E = \"169 GPa\"", "E = \"0.1 MPa\""))
 
     def solve(mu, **options):  # a stand-in for the solver: seconds, not minutes
-        return SimpleNamespace(events=SimpleNamespace(records=lambda: {"p_off": -0.7}),
-                               z_jumps=None, error_estimate={"p_off": 0.1}, message="")
+        return SimpleNamespace(values=lambda: {"p_off": -0.7}, error_estimate={"p_off": 0.1},
+                               message="")
 
     advice = advise(far, solve=solve)
     size = {e.name: e.size for e in advice.effects}

@@ -54,12 +54,6 @@ DIFFERENCE_FACTOR = 2.0
 SPRING_JUMPS = ("z_jump_in", "z_jump_out")
 
 
-def compared(result):
-    """What an estimate compares of a curve: its events (`Events.records`) and, under a spring,
-    the z̄ of its jumps."""
-    return result.events.records() | (result.z_jumps or {})
-
-
 def _keys(a, b):
     """The keys estimated of the compared values `a` and `b`: ESTIMATED, and SPRING_JUMPS where
     either is under a spring."""
@@ -69,8 +63,8 @@ def _keys(a, b):
 def difference_estimate(a, disc, b, partner_disc):
     """Error estimate of the events `a` (records, solved on `disc`) from the partner's `b` (on
     `partner_disc`, surface elements r times as long): |difference| / |r − 1| per ESTIMATED
-    key (and SPRING_JUMPS key under a spring, `compared`), None where the event is missing in
-    either (`_one_sided` and `_missed` name those found by one of the two only).
+    key (and SPRING_JUMPS key under a spring, `CurveResult.values`), None where the event is
+    missing in either (`_one_sided` and `_missed` name those found by one of the two only).
 
     Against a finer partner (r = 1/2) that is twice the difference: the error of first-order
     convergence, which bounds faster convergence too (at order p the difference is the
@@ -245,7 +239,7 @@ def _estimated_by_whole_solve(mu, disc, options, progress, pool):
                 partner = solve_discretised(mu, partner_on, **options)
             if partner.ripples:
                 raise ContinuationError(f"it rippled ({partner.folds} folds)")
-            a, b = compared(result), compared(partner)
+            a, b = result.values(), partner.values()
             estimate = difference_estimate(a, solved_on, b, partner_on)
             return _Estimated(result, estimate, (_one_sided(a, b),), result.status)
         except Exception as exc:  # the estimate never costs the result: whatever stopped it
@@ -278,7 +272,7 @@ def _estimate_against_bem(result, partner):
     if partner.status != "ok" or partner.error_estimate is None:
         raise ContinuationError(f"the boundary integral's curve has status {partner.status!r} "
                                 f"({partner.message})")
-    a, b = compared(result), compared(partner)
+    a, b = result.values(), partner.values()
     keys = _keys(a, b)
     estimate = {k: (DIFFERENCE_FACTOR * abs(a[k] - b[k]) + partner.error_estimate.get(k)
                     if None not in (a.get(k), b.get(k), partner.error_estimate.get(k)) else None)

@@ -125,12 +125,15 @@ class CurveResult:
     estimate_floor: dict | None = None
     model: Model | None = field(default=None, repr=False, compare=False)
 
+    def values(self):
+        """Every estimated value by its key: the events (`Events.records`) and, under a spring,
+        the z̄ of its jumps (`z_jumps`)."""
+        return self.events.records() | (self.z_jumps or {})
+
     @property
     def relative_error_estimate(self):
-        """`error_estimate` relative to each event's magnitude (`relative_estimate`; under a
-        spring, z_jumps' too)."""
-        return relative_estimate(self.error_estimate,
-                                 self.events.records() | (self.z_jumps or {}))
+        """`error_estimate` relative to each value's magnitude (`values`, `relative_estimate`)."""
+        return relative_estimate(self.error_estimate, self.values())
 
     @property
     def ripples(self):
