@@ -5,12 +5,14 @@ import json
 import sys
 from pathlib import Path
 
-from fem_asperity.plumbing.cli import Parser, dump_json, print_table, run
-from fem_asperity.plumbing.errors import InputError
+from fem_asperity.plumbing.cli import Parser, ProgressBar, dump_json, print_table, run
 from fem_asperity.plumbing.files import output_folder, staged_folder, write_atomic
 from fem_asperity.solver.output import write_all
+from gw.explicit.answer import Answer
+from gw.explicit.cli import answer_record, write_answer
+from gw.explicit.relax import keep_freed_memory
 
-from .advice import WHOLE, advise, quantity_key, si_unit, value_of
+from .advice import WHOLE, advise, check_runnable, quantity_key, si_unit, value_of
 from .advice import run as run_model
 from .scene import read_scene
 
@@ -27,7 +29,8 @@ def build_parser():
                         help="run the model chosen and write it into --out (SI)")
     parser.add_argument("--out", type=Path,
                         help="with --run: the output folder (advice.json, the scene file, and "
-                             "the curve's files where the model is a solve)")
+                             "the curve's files where the model is a solve, or the surface's "
+                             "where it is the scene's height map solved whole)")
     return parser
 
 
@@ -42,10 +45,8 @@ def main(argv=None):
         print(f"mu = {scene.mu:.4g}, R/eps = {scene.scales.R / scene.scales.eps:.4g}: solving "
               "the scene at BEM draft to measure its effects ...", file=sys.stderr)
     advice = advise(scene)
-    if args.run and advice.choice == WHOLE:
-        raise InputError(f"--run: the model chosen, {WHOLE}, needs the surface's height map: "
-                         "run python -m gw explicit --topography MAP ... (the advice without "
-                         "--run shows why)")
+    if args.run:
+        check_runnable(advice)  # before anything is run or written
     record = advice.records()
     if args.run:
         _run(advice, record, out, Path(args.scene).name)
@@ -68,11 +69,18 @@ def main(argv=None):
 def _run(advice, record, out, scene_name):
     """The chosen model run and written into `out`, all or nothing: advice.json (the advice, and
     the model's value in SI), the scene file as given, and curve/ (`fem_asperity.write_all`,
-    SI) where the model is a solve. The whole rough surface is not run here (it needs a height
-    map): the advice says so."""
+    SI) where the model is a solve, or surface/ (as `gw explicit --out` writes it) where it is
+    the scene's height map solved whole."""
     print(f"running {advice.choice} ...", file=sys.stderr)
-    result = run_model(advice)
-    if result is not None:
+    bar = ProgressBar("whole surface", time_left=True) if advice.choice == WHOLE else None
+    if bar is not None:
+        keep_freed_memory()  # this process is ours: the solve's fields are reused
+    result = run_model(advice, progress=bar)
+    if bar is not None:
+        bar.close()
+    if isinstance(result, Answer):
+        record["result"] = _surface_result(advice, result)
+    elif result is not None:
         value = value_of(result, quantity_key(advice.scene))
         to_si, unit = si_unit(advice.scene)
         record["result"] = {"model": advice.choice, "value": value,
@@ -89,9 +97,31 @@ def _run(advice, record, out, scene_name):
     with staged_folder(out, owner=OWNER) as stage:
         write_atomic(stage / "advice.json", json.dumps(record, indent=1, allow_nan=False))
         write_atomic(stage / scene_name, advice.scene.source)
-        if result is not None:
+        if isinstance(result, Answer):
+            (stage / "surface").mkdir()
+            write_answer(stage / "surface", result,
+                         answer_record(result, advice.scene.topography()))
+        elif result is not None:
             write_all(result, stage / "curve", advice.scene.scales)
     print(f"wrote {out}", file=sys.stderr)
+
+
+def _surface_result(advice, found):
+    """The whole surface's strength as the advice states a model's value: F̄max per summit
+    (2πRΔγ, R and η the map's counted summits'), in Pa over the map's area, with its error
+    estimate, and the cheaper models' F_max against it."""
+    whole = found.whole
+    to_si, unit = si_unit(advice.scene)
+    if whole.status != "ok":
+        print(f"warning: {whole.message}", file=sys.stderr)
+    return {"model": advice.choice, "value": whole.pressure_max / to_si,
+            "value_si": whole.pressure_max, "unit": unit,
+            "error_estimate": {"value_si": whole.error_estimate["pressure_max"],
+                               "relative": whole.error_estimate["pressure_max"]
+                               / whole.pressure_max},
+            "status": whole.status, "message": whole.message,
+            "relative_to_whole": found.relative_to_whole, "needs": found.needs,
+            "files": "surface/"}
 
 
 if __name__ == "__main__":

@@ -437,11 +437,17 @@ def _interaction(mu, zeta, sigma_r_eta):
                   "stands for that map's own (within 1 % on explicit maps of 600 caps)")
 
 
-def run(advice, *, solve=None):
+def run(advice, *, solve=None, progress=None):
     """The chosen model run: the `CurveResult` of its solve (the draft the advice already has,
-    or the BEM `default` solve of the whole scene with its error estimate), None for a closed
-    form or the table (their value is the model's), and for the whole rough surface (it
-    needs a height map: `gw explicit`)."""
+    or the BEM `default` solve of the whole scene with its error estimate), the `gw.explicit`
+    `Answer` of the surface solved whole on a scene's height map (`default`, a free patch, as
+    `gw explicit` solves it; `progress(fraction)` as it goes), or None for a closed form or the
+    table (their value is the model's). A GW surface given by σ, R, η has no map to solve:
+    `InputError`."""
+    scene = advice.scene
+    check_runnable(advice)
+    if advice.choice == WHOLE:
+        return _whole_surface(scene, progress)
     accuracy = SOLVES.get(advice.choice)
     if accuracy is None:
         return None
@@ -449,7 +455,25 @@ def run(advice, *, solve=None):
         return advice.draft
     if solve is None:
         from fem_asperity.solver.solve import solve_curve as solve
-    scene = advice.scene
     return solve(scene.mu, method="bem", accuracy=accuracy, error_estimate=True,
                  solid=scene.solid, radius_ratio=scene.scales.R / scene.scales.eps,
                  spring_constant=scene.spring)
+
+
+def check_runnable(advice):
+    """`InputError` where the model chosen cannot be run: the surface solved whole of a GW
+    surface given by σ, R, η (there is no height map to solve)."""
+    if advice.choice == WHOLE and "topography" not in advice.scene.surface:
+        raise InputError(f"--run: the model chosen, {WHOLE}, needs the surface's height map: "
+                         "give [surface] topography, or run python -m gw explicit --topography "
+                         "MAP ... (the advice without --run shows why)")
+
+
+def _whole_surface(scene, progress):
+    """`gw.explicit.answer` of the scene's height map solved whole, with every cheaper model."""
+    from gw.explicit import Adhesion
+    from gw.explicit.answer import answer
+
+    s = scene.scales
+    return answer(scene.topography(), Adhesion(s.E_star, s.dgamma, s.eps), model="whole",
+                  accuracy="default", progress=progress)

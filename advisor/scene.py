@@ -120,6 +120,15 @@ class Scene:
     def mu(self):
         return self.scales.mu
 
+    def topography(self):
+        """The scene's height map (`gw.explicit.Topography`, a free patch as `gw explicit`
+        takes it by default), read again from its file; None where the surface is σ, R, η."""
+        if self.surface is None or "topography" not in self.surface:
+            return None
+        from gw.explicit.topography import read_topography
+
+        return read_topography(self.surface["topography"], pixel=self.surface["pixel"])
+
 
 def read_scene(path):
     """The `Scene` of the TOML file at `path`."""

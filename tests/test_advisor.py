@@ -206,7 +206,7 @@ def test_a_rough_surface_scene_measures_each_law_and_says_what_gw_leaves_unbound
     """The MEMS scene: the paper's law's effect on F̄max, predicted from the table, against a
     law solved now (BEM `default`); the ground counted once lowers F̄max; what GW leaves out
     beyond that is not bounded, so the safe model is the surface solved whole, which --run
-    refuses in one line (it needs a height map)."""
+    refuses in one line (σ, R, η give no height map to solve)."""
     from advisor.__main__ import main
     from advisor.advice import PAPER_LAW, WHOLE
     from gw import RoughSurface, solved_law, strength
@@ -447,6 +447,49 @@ def test_a_measured_map_is_a_scene_its_summits_counted_and_its_spectrum_beside(m
     for model in advice.models:
         assert (STATISTICS in model.leaves_out) == model.name.startswith("GW")
     json.dumps(advice.records(), allow_nan=False)
+
+
+def test_run_solves_the_scenes_height_map_whole_where_gw_is_not_bounded(tmp_path):
+    """Three caps on a 64² map (R = 100 nm, μ = 1): their spectral statistics move GW's
+    strength by far more than the tolerance, so the map solved whole is chosen, and --run
+    solves it as `gw explicit` does (`default`, a free patch) with the scene's E* = 1 GPa,
+    Δγ = 0.1 J/m², ε = 1 nm: its strength in Pa is that of the solver called directly with
+    those constants, stated per summit as the advice states GW's, with its estimate; the
+    cheaper models' errors against it and the whole surface's files are written beside."""
+    import numpy as np
+
+    from advisor.__main__ import main
+    from advisor.advice import WHOLE
+    from fem_asperity.plumbing.errors import DerjaguinWarning
+    from gw.explicit import Adhesion, Topography, solve_whole
+    from gw.explicit.topography import gaussian_caps
+
+    topography, _ = gaussian_caps(n=64, pixel=2e-9, radius=100e-9, sigma=2e-9,
+                                  density=250e12, seed=1, periodic=False)
+    (tmp_path / "scan").mkdir()
+    np.save(tmp_path / "scan" / "map.npy", topography.heights)
+    scene_file = tmp_path / "scene.toml"
+    scene_file.write_text(MAP_SCENE)
+    scene = read_scene(scene_file)
+    assert advise(scene).choice == WHOLE
+    out = tmp_path / "o"
+    with pytest.warns(DerjaguinWarning):  # R/ε = 100: the map's summits, as gw explicit warns
+        assert main([str(scene_file), "--run", "--out", str(out)]) == 0
+    result = json.loads((out / "advice.json").read_text())["result"]
+    direct = solve_whole(Topography(heights=topography.heights, pixel=2e-9, periodic=False,
+                                    source="direct"), Adhesion(1e9, 0.1, 1e-9))
+    assert result["model"] == WHOLE and result["unit"] == "Pa"
+    # the inputs' rounding differs (the scene's "100 mJ/m^2"): the two Newton paths then stop
+    # apart within relax.TOLERANCE, 1.4e-9 of the strength here
+    assert result["value_si"] == pytest.approx(direct.pressure_max, rel=1e-6)
+    per_summit = 2 * np.pi * 100e-9 * 0.1 * scene.surface["density"]
+    assert result["value_si"] / result["value"] == pytest.approx(per_summit, rel=1e-9)
+    assert result["error_estimate"]["value_si"] == pytest.approx(
+        direct.error_estimate["pressure_max"], rel=1e-4)
+    assert result["relative_to_whole"]["whole"] == 0.0 and "gw" in result["relative_to_whole"]
+    written = json.loads((out / "surface" / "result.json").read_text())
+    assert written["si"]["pressure_max"] == result["value_si"]
+    assert (out / "surface" / "approach.csv").exists() and (out / "scene.toml").exists()
 
 
 @pytest.mark.parametrize("edit, named", [

@@ -72,13 +72,10 @@ def main(args, parser):
                    radius=args.R, progress=bar)
     if bar is not None:
         bar.close()
-    record = found.records() | {"topography": {"source": topography.source,
-                                               "pixels": list(topography.shape),
-                                               "pixel": topography.pixel,
-                                               "periodic": topography.periodic}}
+    record = answer_record(found, topography)
     if args.out is not None:
         with staged_folder(args.out, owner=OWNER) as stage:
-            _write(stage, found, record)
+            write_answer(stage, found, record)
     if args.json:
         dump_json(record)
     else:
@@ -97,7 +94,17 @@ def main(args, parser):
     return 0
 
 
-def _write(stage, found, record):
+def answer_record(found, topography):
+    """The JSON-ready record of `found` (an `Answer`) with the map it answered."""
+    return found.records() | {"topography": {"source": topography.source,
+                                             "pixels": list(topography.shape),
+                                             "pixel": topography.pixel,
+                                             "periodic": topography.periodic}}
+
+
+def write_answer(stage, found, record):
+    """result.json (`record`), approach.csv and retraction.csv (the whole surface's, SI) and
+    models.png into the folder `stage`."""
     import json
 
     write_atomic(stage / "result.json", json.dumps(record, indent=2, allow_nan=False))
