@@ -12,7 +12,15 @@ from gw.explicit.answer import Answer
 from gw.explicit.cli import answer_record, write_answer
 from gw.explicit.relax import keep_freed_memory
 
-from .advice import WHOLE, advise, check_runnable, quantity_key, si_unit, value_of
+from .advice import (
+    SURFACE_MODELS,
+    WHOLE,
+    advise,
+    check_runnable,
+    quantity_key,
+    si_unit,
+    value_of,
+)
 from .advice import run as run_model
 from .scene import read_scene
 
@@ -72,9 +80,9 @@ def _run(advice, record, out, scene_name):
     SI) where the model is a solve, or surface/ (as `gw explicit --out` writes it) where it is
     the scene's height map solved whole."""
     print(f"running {advice.choice} ...", file=sys.stderr)
-    bar = ProgressBar("whole surface", time_left=True) if advice.choice == WHOLE else None
-    if bar is not None:
+    if advice.choice in SURFACE_MODELS:
         keep_freed_memory()  # this process is ours: the solve's fields are reused
+    bar = ProgressBar("whole surface", time_left=True) if advice.choice == WHOLE else None
     result = run_model(advice, progress=bar)
     if bar is not None:
         bar.close()
@@ -107,21 +115,26 @@ def _run(advice, record, out, scene_name):
 
 
 def _surface_result(advice, found):
-    """The whole surface's strength as the advice states a model's value: F̄max per summit
-    (2πRΔγ, R and η the map's counted summits'), in Pa over the map's area, with its error
-    estimate, and the cheaper models' F_max against it."""
-    whole = found.whole
+    """The chosen model's strength on the scene's map as the advice states a model's value:
+    F̄max per summit (2πRΔγ, R and η the map's counted summits'), in Pa over the map's area;
+    the whole surface's with its error estimate and the cheaper models' F_max against it, the
+    interacting asperities' with the error the advice reads off the measured map."""
     to_si, unit = si_unit(advice.scene)
+    chosen = found.models[SURFACE_MODELS[advice.choice]]
+    out = {"model": advice.choice, "value": chosen.pressure_max / to_si,
+           "value_si": chosen.pressure_max, "unit": unit, "files": "surface/",
+           "notes": list(found.notes)}
+    whole = found.whole
+    if whole is None:
+        error = next(m for m in advice.models if m.name == advice.choice).error
+        return out | {"error": error, "stopped_at_m": chosen.stopped}
     if whole.status != "ok":
         print(f"warning: {whole.message}", file=sys.stderr)
-    return {"model": advice.choice, "value": whole.pressure_max / to_si,
-            "value_si": whole.pressure_max, "unit": unit,
-            "error_estimate": {"value_si": whole.error_estimate["pressure_max"],
-                               "relative": whole.error_estimate["pressure_max"]
-                               / whole.pressure_max},
-            "status": whole.status, "message": whole.message,
-            "relative_to_whole": found.relative_to_whole, "needs": found.needs,
-            "files": "surface/"}
+    return out | {"error_estimate": {"value_si": whole.error_estimate["pressure_max"],
+                                     "relative": whole.error_estimate["pressure_max"]
+                                     / whole.pressure_max},
+                  "status": whole.status, "message": whole.message,
+                  "relative_to_whole": found.relative_to_whole, "needs": found.needs}
 
 
 if __name__ == "__main__":

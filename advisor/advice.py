@@ -20,7 +20,9 @@ holder, the cantilever's far end z̄ under a spring):
 For a rough surface's F̄max (GW), the laws are judged against the table and the ground between
 summits counted once in closed form; what GW leaves out beyond those, the summits' elastic
 interaction, is read off the measured map the package ships (`gw.explicit.measured_map`), and
-is unbounded outside it.
+is unbounded outside it. On a height map the interacting asperities on its own summits are a
+model too, their error (the far field's) read off the same map; `run` answers by them or by
+the map solved whole as `gw explicit` does.
 
 A model's error is the sum of the sizes and uncertainties of the effects it leaves out, each
 measured alone against its own reference: a first-order estimate, not a bound on effects that
@@ -314,6 +316,10 @@ PAPER_LAW, CORRECTED_LAW = ("the paper's law instead of the solved law",
                             "the corrected law instead of the solved law")
 GROUND = "GW's ground between summits counted more than once"
 INTERACTION = "summits that do not feel each other (GW) instead of the surface solved whole"
+FAR_FIELD = ("summits that feel each other through the far field only (interacting asperities) "
+             "instead of the surface solved whole")
+INTERACTING = ("interacting asperities on the map's summits (python -m gw explicit --model "
+               "interacting)")
 WHOLE = "the surface solved whole (python -m gw explicit on a height map)"
 STATISTICS = "the map's summits counted (σ_s, R, η) instead of its spectral moments"
 
@@ -322,7 +328,8 @@ def _advise_surface(scene):
     """F̄max of a GW surface: each law against the table of solved laws, the ground between
     summits counted once in closed form (`gw.shared_ground`); what GW leaves out beyond that
     (the summits' elastic interaction, the ground lifted between them) read off the measured
-    map (`_interaction`), unbounded outside it."""
+    map (`_read_off_map`), unbounded outside it. On a height map, the interacting asperities
+    on its own summits too, their error read off the same map."""
     from gw.integrate import strength
     from gw.laws import CorrectedLaw, PaperLaw
 
@@ -333,7 +340,11 @@ def _advise_surface(scene):
     rough = rough_surface(surface, s)
     table = shipped_table()
     lo, hi = table.mu_range
-    effects = [_interaction(scene.mu, surface["sigma"] / s.eps, sigma_r_eta)]
+    zeta = surface["sigma"] / s.eps
+    effects = [_read_off_map(INTERACTION, scene.mu, zeta, sigma_r_eta)]
+    on_a_map = "topography" in surface
+    if on_a_map:
+        effects.append(_read_off_map(FAR_FIELD, scene.mu, zeta, sigma_r_eta))
     cost = {}
 
     def timed(name, law, **options):  # F̄max, its wall time kept as the model's cost
@@ -376,8 +387,10 @@ def _advise_surface(scene):
         _model("GW, the table of solved laws", f_table, (TABLE, GROUND, INTERACTION) + measured,
                size, cost.get("table")),
         _model("GW, the table, the ground counted once", f_once, (TABLE, INTERACTION)
-               + measured, size, cost.get("once")),
-        Model(WHOLE, None, (), None, None))
+               + measured, size, cost.get("once")))
+    if on_a_map:  # its summits' own places and heights: no statistics to leave out
+        models += (_model(INTERACTING, None, (TABLE, FAR_FIELD), size, None),)
+    models += (Model(WHOLE, None, (), None, None),)
     return _chosen(scene, effects, models, "no GW model is known to meet the tolerance (the "
                    "effects each leaves out sum to more, or one is not bounded here): the safe "
                    f"model is {WHOLE}")
@@ -406,48 +419,54 @@ def _statistics_effect(scene, f_counted, table):
                   f"({surface['summits']} summits counted at the pixel {surface['pixel']:.3g} m)")
 
 
-def _interaction(mu, zeta, sigma_r_eta):
-    """What GW leaves out beyond the laws and the ground counted once (the summits' elastic
-    interaction, the ground lifted between them), read off the measured map shipped with the
-    package (`gw.explicit.measured_map`): the error of GW's sum over the summits, the ground
-    counted once, against the surface solved whole, around the scene; unbounded outside the
-    map."""
+#: What each effect read off the measured map is measured as: (the map's model, what it is).
+MAP_MODELS = {
+    INTERACTION: ("gw_cells", "GW's sum over the summits, the ground counted once (on the map, "
+                  "rigid)"),
+    FAR_FIELD: ("interacting", "the interacting asperities (each summit's law, the others' far "
+                "field P/(pi E* r), the ground counted once)"),
+}
+
+
+def _read_off_map(name, mu, zeta, sigma_r_eta):
+    """The effect `name` of MAP_MODELS read off the measured map shipped with the package
+    (`gw.explicit.measured_map`): the largest error of its model against the surface solved
+    whole over the surfaces around the scene; unbounded outside the map."""
     from gw.explicit.measured_map import AXES, measured_error, shipped_map
 
+    model, what = MAP_MODELS[name]
     shipped = shipped_map()
-    found = measured_error("gw_cells", mu=mu, zeta=zeta, sigma_r_eta=sigma_r_eta,
-                           record=shipped)
+    found = measured_error(model, mu=mu, zeta=zeta, sigma_r_eta=sigma_r_eta, record=shipped)
     if found is not None and found.size is None:
-        return Effect(INTERACTION, None, None, "not measured for this scene",
-                      "a surface of the measured map around the scene has no answer of GW's "
-                      "sum (docs/rough_explicit.md)")
+        return Effect(name, None, None, "not measured for this scene",
+                      f"a surface of the measured map around the scene has no answer of {what} "
+                      "(docs/rough_explicit.md)")
     if found is None:
         box = "no map is shipped" if shipped is None else "outside the measured map's " + (
             ", ".join(f"{k} {min(v):g}-{max(v):g}" for k, v in shipped["axes"].items()))
-        return Effect(INTERACTION, None, None, "not measured for this scene",
+        return Effect(name, None, None, "not measured for this scene",
                       f"mu = {mu:.3g}, zeta = {zeta:.3g}, sigma R eta = {sigma_r_eta:.3g} is "
                       f"{box} (docs/rough_explicit.md); python -m gw explicit answers for a "
                       "height map")
     around = "; ".join(f"{k} " + " and ".join(f"{v:g}" for v in found.around[k]) for k in AXES)
-    return Effect(INTERACTION, found.size, found.uncertainty,
+    return Effect(name, found.size, found.uncertainty,
                   f"read from the measured map shipped with the package: the largest error of "
-                  f"GW's sum over the summits, the ground counted once (on the map, rigid), "
-                  f"against the surface solved whole, over the {found.surfaces} surfaces around "
-                  f"the scene ({around}); the closed form's ground for summits at random places "
-                  "stands for that map's own (within 1 % on explicit maps of 600 caps)")
+                  f"{what} against the surface solved whole, over the {found.surfaces} surfaces "
+                  f"around the scene ({around}); the closed form's ground for summits at random "
+                  "places stands for that map's own (within 1 % on explicit maps of 600 caps)")
 
 
 def run(advice, *, solve=None, progress=None):
     """The chosen model run: the `CurveResult` of its solve (the draft the advice already has,
     or the BEM `default` solve of the whole scene with its error estimate), the `gw.explicit`
-    `Answer` of the surface solved whole on a scene's height map (`default`, a free patch, as
-    `gw explicit` solves it; `progress(fraction)` as it goes), or None for a closed form or the
-    table (their value is the model's). A GW surface given by σ, R, η has no map to solve:
-    `InputError`."""
+    `Answer` of the interacting asperities or the surface solved whole on a scene's height map
+    (`default`, a free patch, as `gw explicit` solves it; `progress(fraction)` as the whole
+    surface goes), or None for a closed form or the table (their value is the model's). A GW
+    surface given by σ, R, η has no map to solve: `InputError`."""
     scene = advice.scene
     check_runnable(advice)
-    if advice.choice == WHOLE:
-        return _whole_surface(scene, progress)
+    if advice.choice in SURFACE_MODELS:
+        return _on_the_map(scene, SURFACE_MODELS[advice.choice], progress)
     accuracy = SOLVES.get(advice.choice)
     if accuracy is None:
         return None
@@ -469,11 +488,15 @@ def check_runnable(advice):
                          "MAP ... (the advice without --run shows why)")
 
 
-def _whole_surface(scene, progress):
-    """`gw.explicit.answer` of the scene's height map solved whole, with every cheaper model."""
+#: The models run on a scene's height map, by the name `gw.explicit.answer` knows them by.
+SURFACE_MODELS = {INTERACTING: "interacting", WHOLE: "whole"}
+
+
+def _on_the_map(scene, model, progress):
+    """`gw.explicit.answer` of the scene's height map up to `model`, each cheaper one too."""
     from gw.explicit import Adhesion
     from gw.explicit.answer import answer
 
     s = scene.scales
-    return answer(scene.topography(), Adhesion(s.E_star, s.dgamma, s.eps), model="whole",
-                  accuracy="default", progress=progress)
+    return answer(scene.topography(), Adhesion(s.E_star, s.dgamma, s.eps), model=model,
+                  accuracy="default", progress=progress if model == "whole" else None)

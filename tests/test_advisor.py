@@ -14,6 +14,7 @@ from advisor import advise, parse_scene, read_scene
 from advisor.advice import DERJAGUIN, DRAFT, HOMOGENEOUS, RIGID, STATISTICS, TABLE
 from fem_asperity import InputError, solve_curve
 from fem_asperity.closed_forms.reference import dmt_pull_off
+from fem_asperity.plumbing.errors import DerjaguinWarning
 from fem_asperity.solids.fe import Solid
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
@@ -460,7 +461,6 @@ def test_run_solves_the_scenes_height_map_whole_where_gw_is_not_bounded(tmp_path
 
     from advisor.__main__ import main
     from advisor.advice import WHOLE
-    from fem_asperity.plumbing.errors import DerjaguinWarning
     from gw.explicit import Adhesion, Topography, solve_whole
     from gw.explicit.topography import gaussian_caps
 
@@ -490,6 +490,40 @@ def test_run_solves_the_scenes_height_map_whole_where_gw_is_not_bounded(tmp_path
     written = json.loads((out / "surface" / "result.json").read_text())
     assert written["si"]["pressure_max"] == result["value_si"]
     assert (out / "surface" / "approach.csv").exists() and (out / "scene.toml").exists()
+
+
+@pytest.mark.slow
+def test_on_a_map_inside_the_measured_one_the_interacting_asperities_are_chosen(measured_map):
+    """The caps' map at μ = 0.3 (E* = 6.086 GPa; counted ζ = 1.7, σRη = 0.040): GW's models
+    leave out the statistics' 99 %, the interacting asperities only the far field's error
+    read off the measured map (within 0.15 there), so at a tolerance of 0.15 they are chosen;
+    --run answers by them, and solved whole the map bears the advice out: their F_max is
+    within the error the advice states of the whole surface's."""
+    from advisor.__main__ import main
+    from advisor.advice import FAR_FIELD, INTERACTING
+    from gw.explicit import Adhesion
+    from gw.explicit.answer import answer
+
+    measured_map.write_text(MAP_SCENE.replace("E = \"1 GPa\"\nnu = 0",
+                                              "E_star = \"6.0858062 GPa\"").replace(
+        "tolerance = 0.1", "tolerance = 0.15"))
+    scene = read_scene(measured_map)
+    assert scene.mu == pytest.approx(0.3, rel=1e-6)
+    advice = advise(scene)
+    far_field = next(e for e in advice.effects if e.name == FAR_FIELD)
+    assert far_field.size is not None and "measured map" in far_field.how
+    chosen = next(m for m in advice.models if m.name == INTERACTING)
+    assert advice.choice == INTERACTING and chosen.error <= 0.15
+    out = measured_map.parent / "o"
+    with pytest.warns(DerjaguinWarning):  # R/ε = 100
+        assert main([str(measured_map), "--run", "--out", str(out)]) == 0
+    result = json.loads((out / "advice.json").read_text())["result"]
+    assert result["model"] == INTERACTING and result["error"] == chosen.error
+    with pytest.warns(DerjaguinWarning):
+        both = answer(scene.topography(), Adhesion(6.0858062e9, 0.1, 1e-9), model="whole")
+    assert result["value_si"] == pytest.approx(both.models["interacting"].pressure_max,
+                                               rel=1e-9)
+    assert abs(both.relative_to_whole["interacting"]) <= chosen.error
 
 
 @pytest.mark.parametrize("edit, named", [
