@@ -84,8 +84,8 @@ class SurfaceShape:
         """(Ā, ā_c): the outer radius ā_c of the compressive zone (h < 1) and the disc's area
         π ā_c², as the events' ā_c and the traced folds' areas (`paths.disc_area`). Inside the
         contact h is within ~1e-3 ε of 1 at large μ, where the discretisation's ripples flip its
-        sign: summing only the compressive annuli gave 38 % of the disc at μ = 30 (BEM draft,
-        test_surface_solver.py), where ā_c is JKR's to 3e-3.
+        sign: summing only the compressive annuli gave 0.91 of the disc near the landing at μ = 20
+        and 0.38 at μ = 30 (BEM draft), where ā_c is JKR's to 3e-3 (test_contact_area.py).
 
         Between nodes w is taken linear and the profile exact (r²/2 for Derjaguin), so the edge is
         the root of a quadratic, not a node position.
