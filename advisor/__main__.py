@@ -8,9 +8,6 @@ from pathlib import Path
 from fem_asperity.plumbing.cli import Parser, ProgressBar, dump_json, print_table, run
 from fem_asperity.plumbing.files import output_folder, staged_folder, write_atomic
 from fem_asperity.solver.output import write_all
-from gw.explicit.answer import Answer
-from gw.explicit.cli import answer_record, write_answer
-from gw.explicit.relax import keep_freed_memory
 
 from .advice import (
     SURFACE_MODELS,
@@ -38,7 +35,7 @@ def build_parser():
     parser.add_argument("--out", type=Path,
                         help="with --run: the output folder (advice.json, the scene file, and "
                              "the curve's files where the model is a solve, or the surface's "
-                             "where it is the scene's height map solved whole)")
+                             "where it is run on the scene's height map)")
     return parser
 
 
@@ -77,8 +74,12 @@ def main(argv=None):
 def _run(advice, record, out, scene_name):
     """The chosen model run and written into `out`, all or nothing: advice.json (the advice, and
     the model's value in SI), the scene file as given, and curve/ (`fem_asperity.write_all`,
-    SI) where the model is a solve, or surface/ (as `gw explicit --out` writes it) where it is
-    the scene's height map solved whole."""
+    SI) where the model is a solve, or surface/ (as `gw explicit --out` writes it) where it
+    is run on the scene's height map (the interacting asperities or the whole surface)."""
+    from gw.explicit.answer import Answer
+    from gw.explicit.cli import answer_record, write_answer
+    from gw.explicit.relax import keep_freed_memory
+
     print(f"running {advice.choice} ...", file=sys.stderr)
     if advice.choice in SURFACE_MODELS:
         keep_freed_memory()  # this process is ours: the solve's fields are reused
@@ -118,12 +119,20 @@ def _surface_result(advice, found):
     """The chosen model's strength on the scene's map as the advice states a model's value:
     F̄max per summit (2πRΔγ, R and η the map's counted summits'), in Pa over the map's area;
     the whole surface's with its error estimate and the cheaper models' F_max against it, the
-    interacting asperities' with the error the advice reads off the measured map."""
+    interacting asperities' with the error the advice reads off the measured map, or no value
+    (a warning) where they found no equilibrium before the total force turned compressive
+    (`gw.explicit.compare.settled`: their F_max is then not their own)."""
+    from gw.explicit.compare import settled
+
     to_si, unit = si_unit(advice.scene)
-    chosen = found.models[SURFACE_MODELS[advice.choice]]
-    out = {"model": advice.choice, "value": chosen.pressure_max / to_si,
-           "value_si": chosen.pressure_max, "unit": unit, "files": "surface/",
-           "notes": list(found.notes)}
+    chosen = found.models.get(SURFACE_MODELS[advice.choice])
+    out = {"model": advice.choice, "value": None, "value_si": None, "unit": unit,
+           "files": "surface/", "notes": list(found.notes)}
+    if chosen is None or not settled(chosen.stopped, chosen.force):
+        print(f"warning: {advice.choice} has no answer on this map: "
+              + "; ".join(found.notes), file=sys.stderr)
+        return out
+    out |= {"value": chosen.pressure_max / to_si, "value_si": chosen.pressure_max}
     whole = found.whole
     if whole is None:
         error = next(m for m in advice.models if m.name == advice.choice).error

@@ -328,8 +328,10 @@ def _advise_surface(scene):
     """F̄max of a GW surface: each law against the table of solved laws, the ground between
     summits counted once in closed form (`gw.shared_ground`); what GW leaves out beyond that
     (the summits' elastic interaction, the ground lifted between them) read off the measured
-    map (`_read_off_map`), unbounded outside it. On a height map, the interacting asperities
-    on its own summits too, their error read off the same map."""
+    map (`_read_off_map`), unbounded outside it. On a height map of at most MAX_SUMMITS
+    summits, the interacting asperities on them too, their error read off the same map (its
+    caps were of one R; the spread of a measured map's summit radii is not in it)."""
+    from gw.explicit.answer import MAX_SUMMITS
     from gw.integrate import strength
     from gw.laws import CorrectedLaw, PaperLaw
 
@@ -342,8 +344,8 @@ def _advise_surface(scene):
     lo, hi = table.mu_range
     zeta = surface["sigma"] / s.eps
     effects = [_read_off_map(INTERACTION, scene.mu, zeta, sigma_r_eta)]
-    on_a_map = "topography" in surface
-    if on_a_map:
+    interacting = "topography" in surface and surface["summits"] <= MAX_SUMMITS
+    if interacting:
         effects.append(_read_off_map(FAR_FIELD, scene.mu, zeta, sigma_r_eta))
     cost = {}
 
@@ -388,7 +390,7 @@ def _advise_surface(scene):
                size, cost.get("table")),
         _model("GW, the table, the ground counted once", f_once, (TABLE, INTERACTION)
                + measured, size, cost.get("once")))
-    if on_a_map:  # its summits' own places and heights: no statistics to leave out
+    if interacting:  # each summit at its own place and height, all of the counted mean R
         models += (_model(INTERACTING, None, (TABLE, FAR_FIELD), size, None),)
     models += (Model(WHOLE, None, (), None, None),)
     return _chosen(scene, effects, models, "no GW model is known to meet the tolerance (the "
@@ -422,7 +424,8 @@ def _statistics_effect(scene, f_counted, table):
 #: What each effect read off the measured map is measured as: (the map's model, what it is).
 MAP_MODELS = {
     INTERACTION: ("gw_cells", "GW's sum over the summits, the ground counted once (on the map, "
-                  "rigid)"),
+                  "rigid; the closed form's ground for summits at random places stands for "
+                  "that map's own: within 1 % on explicit maps of 600 caps)"),
     FAR_FIELD: ("interacting", "the interacting asperities (each summit's law, the others' far "
                 "field P/(pi E* r), the ground counted once)"),
 }
@@ -452,8 +455,7 @@ def _read_off_map(name, mu, zeta, sigma_r_eta):
     return Effect(name, found.size, found.uncertainty,
                   f"read from the measured map shipped with the package: the largest error of "
                   f"{what} against the surface solved whole, over the {found.surfaces} surfaces "
-                  f"around the scene ({around}); the closed form's ground for summits at random "
-                  "places stands for that map's own (within 1 % on explicit maps of 600 caps)")
+                  f"around the scene ({around})")
 
 
 def run(advice, *, solve=None, progress=None):
@@ -480,12 +482,22 @@ def run(advice, *, solve=None, progress=None):
 
 
 def check_runnable(advice):
-    """`InputError` where the model chosen cannot be run: the surface solved whole of a GW
-    surface given by σ, R, η (there is no height map to solve)."""
-    if advice.choice == WHOLE and "topography" not in advice.scene.surface:
-        raise InputError(f"--run: the model chosen, {WHOLE}, needs the surface's height map: "
-                         "give [surface] topography, or run python -m gw explicit --topography "
-                         "MAP ... (the advice without --run shows why)")
+    """`InputError`, naming the scene's key, where the model chosen cannot be run: on a GW
+    surface given by σ, R, η (no height map to run it on), or on a height map `gw explicit`
+    refuses (too large, too small, too coarse for the cohesive zone)."""
+    scene = advice.scene
+    if advice.choice not in SURFACE_MODELS:
+        return
+    if "topography" not in scene.surface:
+        raise InputError(f"--run: the model chosen, {advice.choice}, needs the surface's height "
+                         "map: give [surface] topography, or run python -m gw explicit "
+                         "--topography MAP ... (the advice without --run shows why)")
+    from gw.explicit.whole import check_map
+
+    try:
+        check_map(scene.topography(), _adhesion(scene))
+    except InputError as exc:
+        raise InputError(f"surface.topography: {exc}") from None
 
 
 #: The models run on a scene's height map, by the name `gw.explicit.answer` knows them by.
@@ -494,9 +506,15 @@ SURFACE_MODELS = {INTERACTING: "interacting", WHOLE: "whole"}
 
 def _on_the_map(scene, model, progress):
     """`gw.explicit.answer` of the scene's height map up to `model`, each cheaper one too."""
-    from gw.explicit import Adhesion
     from gw.explicit.answer import answer
 
+    return answer(scene.topography(), _adhesion(scene), model=model, accuracy="default",
+                  progress=progress if model == "whole" else None)
+
+
+def _adhesion(scene):
+    """The scene's `gw.explicit.Adhesion` (E*, Δγ, ε)."""
+    from gw.explicit import Adhesion
+
     s = scene.scales
-    return answer(scene.topography(), Adhesion(s.E_star, s.dgamma, s.eps), model=model,
-                  accuracy="default", progress=progress if model == "whole" else None)
+    return Adhesion(s.E_star, s.dgamma, s.eps)

@@ -414,21 +414,26 @@ MAP_SCENE = INSIDE_THE_MAP.replace("sigma = \"2 nm\"\nradius = \"100 nm\"\ndensi
                                    "topography = \"scan/map.npy\"\npixel = \"2 nm\"")
 
 
-@pytest.fixture
-def measured_map(tmp_path):
-    """A scene file beside a height map of caps of R = 100 nm at Gaussian heights (σ = 2 nm,
-    η = 250 /µm², 128² pixels of 2 nm), named relative to the scene file."""
+def _caps_map(folder, n):
+    """(scene file, heights): MAP_SCENE in `folder` beside a height map of caps of R = 100 nm
+    at Gaussian heights (σ = 2 nm, η = 250 /µm², n² pixels of 2 nm, free), scan/map.npy."""
     import numpy as np
 
     from gw.explicit.topography import gaussian_caps
 
-    topography, _ = gaussian_caps(n=128, pixel=2e-9, radius=100e-9, sigma=2e-9,
+    topography, _ = gaussian_caps(n=n, pixel=2e-9, radius=100e-9, sigma=2e-9,
                                   density=250e12, seed=1, periodic=False)
-    (tmp_path / "scan").mkdir()
-    np.save(tmp_path / "scan" / "map.npy", topography.heights)
-    scene = tmp_path / "scene.toml"
+    (folder / "scan").mkdir()
+    np.save(folder / "scan" / "map.npy", topography.heights)
+    scene = folder / "scene.toml"
     scene.write_text(MAP_SCENE)
-    return scene
+    return scene, topography.heights
+
+
+@pytest.fixture
+def measured_map(tmp_path):
+    """The scene file of `_caps_map` on 128² pixels (15 caps)."""
+    return _caps_map(tmp_path, 128)[0]
 
 
 def test_a_measured_map_is_a_scene_its_summits_counted_and_its_spectrum_beside(measured_map):
@@ -451,39 +456,31 @@ def test_a_measured_map_is_a_scene_its_summits_counted_and_its_spectrum_beside(m
 
 
 def test_run_solves_the_scenes_height_map_whole_where_gw_is_not_bounded(tmp_path):
-    """Three caps on a 64² map (R = 100 nm, μ = 1): their spectral statistics move GW's
-    strength by far more than the tolerance, so the map solved whole is chosen, and --run
-    solves it as `gw explicit` does (`default`, a free patch) with the scene's E* = 1 GPa,
-    Δγ = 0.1 J/m², ε = 1 nm: its strength in Pa is that of the solver called directly with
-    those constants, stated per summit as the advice states GW's, with its estimate; the
-    cheaper models' errors against it and the whole surface's files are written beside."""
-    import numpy as np
-
+    """Three caps on a 64² map (R = 100 nm, μ = 1; counted ζ = 0.43, σRη = 0.008, outside the
+    measured map): the spectral statistics move GW's strength by far more than the tolerance
+    and the interacting asperities' far field is not bounded there, so the map solved whole is
+    chosen, and --run solves it as `gw explicit` does (`default`, a free patch) with the
+    scene's E* = 1 GPa, Δγ = 0.1 J/m², ε = 1 nm: its strength in Pa is that of the solver
+    called directly with those constants, with
+    its estimate; the cheaper models' errors against it and the whole surface's files are
+    written beside."""
     from advisor.__main__ import main
     from advisor.advice import WHOLE
     from gw.explicit import Adhesion, Topography, solve_whole
-    from gw.explicit.topography import gaussian_caps
 
-    topography, _ = gaussian_caps(n=64, pixel=2e-9, radius=100e-9, sigma=2e-9,
-                                  density=250e12, seed=1, periodic=False)
-    (tmp_path / "scan").mkdir()
-    np.save(tmp_path / "scan" / "map.npy", topography.heights)
-    scene_file = tmp_path / "scene.toml"
-    scene_file.write_text(MAP_SCENE)
+    scene_file, heights = _caps_map(tmp_path, 64)
     scene = read_scene(scene_file)
     assert advise(scene).choice == WHOLE
     out = tmp_path / "o"
     with pytest.warns(DerjaguinWarning):  # R/ε = 100: the map's summits, as gw explicit warns
         assert main([str(scene_file), "--run", "--out", str(out)]) == 0
     result = json.loads((out / "advice.json").read_text())["result"]
-    direct = solve_whole(Topography(heights=topography.heights, pixel=2e-9, periodic=False,
+    direct = solve_whole(Topography(heights=heights, pixel=2e-9, periodic=False,
                                     source="direct"), Adhesion(1e9, 0.1, 1e-9))
     assert result["model"] == WHOLE and result["unit"] == "Pa"
-    # the inputs' rounding differs (the scene's "100 mJ/m^2"): the two Newton paths then stop
+    # the scene's E* is 1 GPa rounded (999999999.9999999 Pa): the two Newton paths then stop
     # apart within relax.TOLERANCE, 1.4e-9 of the strength here
     assert result["value_si"] == pytest.approx(direct.pressure_max, rel=1e-6)
-    per_summit = 2 * np.pi * 100e-9 * 0.1 * scene.surface["density"]
-    assert result["value_si"] / result["value"] == pytest.approx(per_summit, rel=1e-9)
     assert result["error_estimate"]["value_si"] == pytest.approx(
         direct.error_estimate["pressure_max"], rel=1e-4)
     assert result["relative_to_whole"]["whole"] == 0.0 and "gw" in result["relative_to_whole"]
@@ -524,6 +521,42 @@ def test_on_a_map_inside_the_measured_one_the_interacting_asperities_are_chosen(
     assert result["value_si"] == pytest.approx(both.models["interacting"].pressure_max,
                                                rel=1e-9)
     assert abs(both.relative_to_whole["interacting"]) <= chosen.error
+
+
+def test_run_refuses_a_map_too_coarse_for_the_cohesive_zone_before_anything_runs(tmp_path):
+    """The 64² caps' map on a solid of 68 MPa (μ = 6): its pixel of 0.2 √(Rε) gives a
+    compliance number of 0.93, more than REFUSE (8) times the bound: the advice is given,
+    --run is refused in one line naming surface.topography, and nothing is written."""
+    from advisor.__main__ import main
+
+    scene_file, _ = _caps_map(tmp_path, 64)
+    scene_file.write_text(MAP_SCENE.replace("E = \"1 GPa\"", "E = \"68 MPa\""))
+    assert main([str(scene_file)]) == 0
+    with pytest.raises(InputError, match="surface.topography: the pixel .* too coarse"):
+        main([str(scene_file), "--run", "--out", str(tmp_path / "o")])
+    assert not (tmp_path / "o").exists()
+
+
+def test_run_gives_no_value_where_the_interacting_asperities_have_no_answer(
+        measured_map, monkeypatch, capsys):
+    """Where the interacting asperities stop still in tension (their F_max not their own:
+    `compare.settled`), --run writes no value for them, says why, and keeps the files."""
+    import numpy as np
+
+    from advisor import advice as advice_module
+    from advisor.__main__ import _surface_result
+    from advisor.advice import INTERACTING
+    from gw.explicit.answer import Answer, ModelAnswer
+
+    stopped = ModelAnswer(1.0, 0.0, 1.0, 0.1, np.array([2e-9, 1e-9]), np.array([-1.0, -2.0]),
+                          stopped=1e-9)
+    found = Answer({"interacting": stopped}, None, {}, None, {}, 0.3, 1e-7,
+                   ("interacting: no equilibrium below d = 1e-09 m",))
+    scene = read_scene(measured_map)
+    advice = advice_module.Advice(scene, (), (), INTERACTING, "")
+    result = _surface_result(advice, found)
+    assert result["value"] is None and result["value_si"] is None
+    assert "no answer on this map: interacting: no equilibrium" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize("edit, named", [

@@ -17,8 +17,8 @@ Here the same pieces are joined as the solved curves are (units: δ̄o in ε, P�
   compliance, which is what is left at μ → 0), s_m = (3√(2π)/4)^(2/3) where the JKR force is
   least, u_m = s_m² − √(2π s_m) = −0.7734; Ā the compressive zone of that JKR contact, where
   Hertz's pressure beats the punch's tension (`reference.jkr_compressive_radius_at`), as the
-  solved laws' area is the compressive one (JKR's whole contact π μ s² is 1.8-2.2 times it
-  on GW surfaces at μ = 1-10, test_corrected_law.py);
+  solved laws' area is the compressive one (JKR's whole contact π μ s² was 1.8-2.2 times it
+  on GW surfaces at μ = 1-10; test_corrected_law.py holds the new one within 10 % there);
 - δ̄J(μ) = 1 + a μ^b and δ̄m(μ) = δ̄J + |u_m| μ − c μ^q: where the approach jumps (below the
   onset, where it falls steeply) and where the JKR curve alone would be least (the force is
   least at δ̄m + x̄_B(P̄off) − 1, the wall's shift); both tend to Bradley's minimum δ̄o = 1 as

@@ -85,7 +85,8 @@ class SurfaceShape:
         π ā_c², as the events' ā_c and the traced folds' areas (`paths.disc_area`). Inside the
         contact h is within ~1e-3 ε of 1 at large μ, where the discretisation's ripples flip its
         sign: summing only the compressive annuli gave 0.91 of the disc near the landing at μ = 20
-        and 0.38 at μ = 30 (BEM draft), where ā_c is JKR's to 3e-3 (test_contact_area.py).
+        and 0.38 at μ = 30 (BEM draft), where ā_c was JKR's to 3e-3; test_contact_area.py holds
+        the area to JKR's within 2 % at μ = 20.
 
         Between nodes w is taken linear and the profile exact (r²/2 for Derjaguin), so the edge is
         the root of a quadratic, not a node position.

@@ -103,8 +103,8 @@ def answer_record(found, topography):
 
 
 def write_answer(stage, found, record):
-    """result.json (`record`), approach.csv and retraction.csv (the whole surface's, SI) and
-    models.png into the folder `stage`."""
+    """result.json (`record`), models.png and, where the whole surface was solved, its
+    approach.csv and retraction.csv (SI) into the folder `stage`."""
     import json
 
     write_atomic(stage / "result.json", json.dumps(record, indent=2, allow_nan=False))
