@@ -446,3 +446,17 @@ def test_the_estimate_of_a_force_sees_the_traction_beyond_the_grid():
     assert error > result.error_estimate["p_off"] - floor  # what refinement alone would say
     assert error <= result.error_estimate["p_off"]
     assert result.records()["estimate_floor"]["p_off"] == floor
+
+
+def test_the_exact_sphere_is_followed_at_large_mu_and_tends_to_derjaguin():
+    """At μ = 5.15 the path follows the crack tip, moving the gaps outward; beyond an exact
+    sphere's equator (r² > R/ε, inside the traction grid up to R/ε = 1e4) the gap is infinite
+    and the move made NaNs: Newton failed at the first step for R/ε = 167 and 1000. Now both
+    solve, and P̄off tends to Derjaguin's as ε/R (its difference 5.8x smaller at 6x the
+    radius)."""
+    mu = 5.153785501199396
+    p_off = {rr: solve_curve(mu, method="bem", accuracy="draft", error_estimate=False,
+                             radius_ratio=rr).events.p_off for rr in (1000.0 / 6.0, 1000.0, None)}
+    near, far = (abs(p_off[rr] - p_off[None]) for rr in (1000.0 / 6.0, 1000.0))
+    assert near > far > 0.0
+    assert near / far == pytest.approx(6.0, rel=0.2)

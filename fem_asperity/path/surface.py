@@ -140,7 +140,13 @@ class SurfaceShape:
         onto = self if onto is None else onto
         gaps = delta + self.node_profile - w
         moved = np.interp(onto.r_nodes - shift, self.r_nodes, gaps)
-        return (delta if new_delta is None else new_delta) + onto.node_profile - moved
+        # beyond an exact sphere's equator the gap is infinite (inf − inf here): no traction
+        # acts there, and the deflection is held (test_bem_curve.py, μ = 5.15 at R/ε = 167)
+        with np.errstate(invalid="ignore"):
+            translated = (delta if new_delta is None else new_delta) + onto.node_profile - moved
+        beyond = ~np.isfinite(translated)
+        translated[beyond] = np.interp(onto.r_nodes[beyond], self.r_nodes, w)
+        return translated
 
     def centre_gap(self, w, delta):
         """x̄o = h(0) = δ − w(0), in ε."""
