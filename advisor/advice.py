@@ -15,7 +15,9 @@ holder, the cantilever's far end z̄ under a spring):
   thing, its uncertainty twice the draft's error estimate;
 - a rigid holder instead of the cantilever: none on the pull-off force, exactly (the snap-out
   comes where dP̄/dδ̄o = k̄ > 0, after the least force); on a jump, computed as the two others;
-- the BEM `draft` instead of `default`: the draft solve's own error estimate of the quantity.
+- the BEM `draft` instead of `default`: the draft solve's own error estimate of the quantity;
+- the BEM `default` instead of `fine`: likewise, the default solve's own estimate, measured
+  where no cheaper model meets the tolerance (the default is then solved with it).
 
 For a rough surface's F̄max (GW), the laws are judged against the table and the ground between
 summits counted once in closed form; what GW leaves out beyond those, the summits' elastic
@@ -27,12 +29,13 @@ the map solved whole as `gw explicit` does.
 A model's error is the sum of the sizes and uncertainties of the effects it leaves out, each
 measured alone against its own reference: a first-order estimate, not a bound on effects that
 interact. Where an effect cannot be measured (outside the table's μ) the models that need it
-are not chosen, and where no model is known to meet the tolerance the advice is the safe one,
-the BEM `default` solve of the whole scene, and says so.
+are not chosen, and where no cheaper model is known to meet the tolerance the advice is the
+BEM `default` solve of the whole scene, by its own estimate, or where even that misses the
+safe one, the `fine` solve; it says so.
 """
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -108,14 +111,15 @@ class Model:
 @dataclass(frozen=True)
 class Advice:
     """The scene, every effect, every model (cheapest first), the one chosen and why, and the
-    BEM draft solve of the whole scene the effects were measured with (`CurveResult`)."""
+    solves of the whole scene the advice made, by accuracy (`CurveResult`s: the draft the
+    effects were measured with, and the default where it was measured as the safe model)."""
 
     scene: object
     effects: tuple[Effect, ...]
     models: tuple[Model, ...]
     choice: str
     message: str
-    draft: object = None
+    solves: dict = field(default_factory=dict)
 
     def records(self):
         """A JSON-ready dict: the scene in SI, the effects, the models (the value
@@ -201,31 +205,47 @@ def advise(scene, *, solve=None):
                              size, 0.0))
     models.append(_model("table of solved laws", table[0] if table else None,
                          (TABLE,) + carried, size, None))
-    draft, default = SOLVES
+    draft, default, fine = SOLVES
     models.append(_model(draft, solved["value"], (DRAFT,), size, solved["cost_s"]))
+    solves = {"draft": solved["result"]}
+    if not any(m.error is not None and m.error <= scene.tolerance for m in models):
+        # the safe model measured: the default solve with its own estimate
+        result, effect, cost = _measured_solve(scene, solve, "default", DEFAULT)
+        effects.append(effect)
+        solves["default"] = result
+        models.append(_model(default, value_of(result, quantity_key(scene)), (DEFAULT,),
+                             {DEFAULT: _with_uncertainty(effect)}, cost))
+        models.append(Model(fine, None, (), None, None))
+        return _chosen(scene, effects, models, "no cheaper model is known to meet the "
+                       "tolerance, nor the BEM default solve by its own estimate: the safe "
+                       "model, the BEM fine solve of the whole scene (python -m fem_asperity "
+                       "curve ... --method bem --accuracy fine)", solves)
     models.append(Model(default, None, (), None, None))
     return _chosen(scene, effects, models, "no cheaper model is known to meet the tolerance: "
                    "the safe model, the BEM default solve of the whole scene (python -m "
-                   "fem_asperity curve ... --method bem)", solved["result"])
+                   "fem_asperity curve ... --method bem)", solves)
 
 
-def _chosen(scene, effects, models, otherwise, draft=None):
+def _chosen(scene, effects, models, otherwise, solves=None):
     """The `Advice`: the cheapest of `models` whose error meets the scene's tolerance, else the
     last (the safe one), said why in `otherwise`."""
     meets = [m for m in models if m.error is not None and m.error <= scene.tolerance]
+    solves = solves or {}
     if not meets:
-        return Advice(scene, tuple(effects), tuple(models), models[-1].name, otherwise, draft)
+        return Advice(scene, tuple(effects), tuple(models), models[-1].name, otherwise, solves)
     best = meets[0]
     return Advice(scene, tuple(effects), tuple(models), best.name,
                   f"{best.name}: the effects it leaves out sum to {best.error:.2g} <= the "
                   f"tolerance {scene.tolerance:g} (each measured alone: a first-order estimate)",
-                  draft)
+                  solves)
 
 
 #: The models that solve the whole scene, by name: the accuracy preset each runs (`run`).
-SOLVES = {"BEM draft, the whole scene": "draft", "BEM default, the whole scene": "default"}
+SOLVES = {"BEM draft, the whole scene": "draft", "BEM default, the whole scene": "default",
+          "BEM fine, the whole scene": "fine"}
 #: Effect names.
 TABLE, DRAFT = "the table of solved laws instead of a solve", "BEM draft instead of default"
+DEFAULT = "BEM default instead of fine"
 DERJAGUIN = "Derjaguin's parabola instead of the exact sphere"
 HOMOGENEOUS = "a homogeneous half-space instead of the layer"
 RIGID = "a rigid holder instead of the cantilever"
@@ -272,25 +292,41 @@ def _table_value(mu, quantity):
     return delta, None if error is None else error / abs(delta)
 
 
+def _whole_scene(scene):
+    """The solver's options for the whole scene (its solid, sphere and cantilever)."""
+    return dict(solid=scene.solid, radius_ratio=scene.scales.R / scene.scales.eps,
+                spring_constant=scene.spring)
+
+
+def _measured_solve(scene, solve, accuracy, name):
+    """(result, effect `name`, seconds): the whole scene solved by BEM at `accuracy` with its
+    error estimate, the effect that estimate relative to the value. `InputError` where the
+    scene has no value of its quantity (a jump it does not make)."""
+    key = quantity_key(scene)
+    start = time.perf_counter()
+    result = solve(scene.mu, method="bem", accuracy=accuracy, error_estimate=True,
+                   **_whole_scene(scene))
+    cost = time.perf_counter() - start
+    value = value_of(result, key)
+    if value is None:
+        raise InputError(f"want.quantity: the scene makes no {scene.quantity} (its BEM "
+                         f"{accuracy} solve, mu = {scene.mu:.4g}: {result.message})")
+    estimate = (result.error_estimate or {}).get(key)
+    return result, Effect(name, None if estimate is None else estimate / abs(value), None,
+                          f"the {accuracy} solve's own error estimate",
+                          "" if estimate is not None else f"no estimate: {result.message}"), cost
+
+
 def _solved_effects(scene, solve):
     """The whole scene at BEM `draft` with its estimate, and one draft solve per simplification
     that applies: {'value', 'cost_s', 'effects', 'result'}. `InputError` where the whole scene
     has no value of its quantity (a jump it does not make)."""
-    whole = dict(solid=scene.solid, radius_ratio=scene.scales.R / scene.scales.eps,
-                 spring_constant=scene.spring)
+    whole = _whole_scene(scene)
     key = quantity_key(scene)
-    start = time.perf_counter()
-    full = solve(scene.mu, method="bem", accuracy="draft", error_estimate=True, **whole)
-    cost = time.perf_counter() - start
+    full, effect, cost = _measured_solve(scene, solve, "draft", DRAFT)
     value = value_of(full, key)
-    if value is None:
-        raise InputError(f"want.quantity: the scene makes no {scene.quantity} (its BEM draft "
-                         f"solve, mu = {scene.mu:.4g}: {full.message})")
-    estimate = (full.error_estimate or {}).get(key)
-    draft_error = None if estimate is None else estimate / abs(value)
-    twice = None if draft_error is None else 2.0 * draft_error
-    effects = [Effect(DRAFT, draft_error, None, "the draft solve's own error estimate",
-                      "" if estimate is not None else f"no estimate: {full.message}")]
+    twice = None if effect.size is None else 2.0 * effect.size
+    effects = [effect]
     variants = [(DERJAGUIN, {"radius_ratio": None}, key)]
     if scene.spring is not None and scene.quantity == "pull_off":
         effects.append(Effect(RIGID, 0.0, None, "exact for the pull-off force: the snap-out "
@@ -472,13 +508,12 @@ def run(advice, *, solve=None, progress=None):
     accuracy = SOLVES.get(advice.choice)
     if accuracy is None:
         return None
-    if accuracy == "draft":
-        return advice.draft
+    if accuracy in advice.solves:
+        return advice.solves[accuracy]
     if solve is None:
         from fem_asperity.solver.solve import solve_curve as solve
     return solve(scene.mu, method="bem", accuracy=accuracy, error_estimate=True,
-                 solid=scene.solid, radius_ratio=scene.scales.R / scene.scales.eps,
-                 spring_constant=scene.spring)
+                 **_whole_scene(scene))
 
 
 def check_runnable(advice):

@@ -11,7 +11,15 @@ from types import SimpleNamespace
 import pytest
 
 from advisor import advise, parse_scene, read_scene
-from advisor.advice import DERJAGUIN, DRAFT, HOMOGENEOUS, RIGID, STATISTICS, TABLE
+from advisor.advice import (
+    DEFAULT,
+    DERJAGUIN,
+    DRAFT,
+    HOMOGENEOUS,
+    RIGID,
+    STATISTICS,
+    TABLE,
+)
 from fem_asperity import InputError, solve_curve
 from fem_asperity.closed_forms.reference import dmt_pull_off
 from fem_asperity.plumbing.errors import DerjaguinWarning
@@ -156,24 +164,49 @@ def test_on_a_soft_layer_every_simplification_fails_but_the_solve(tmp_path):
     assert record["scene"]["spring_N_per_m"] == 0.5 and record["models"][0]["value_si"] < 0
 
 
-def test_outside_the_table_no_closed_form_is_chosen_and_the_safe_model_is_said():
+def test_outside_the_table_no_closed_form_is_chosen_and_the_safe_model_is_measured():
     """Below the table's μ = 0.01 (the solver goes lower) the closed forms' effects cannot be
-    measured: never chosen; with a draft estimate above the tolerance the advice is the BEM
-    default solve. (Above the table's 50 the solver refuses the scene too.)"""
+    measured: never chosen; with a draft estimate above the tolerance the BEM default solve is
+    made with its own estimate, the safe model's error: chosen where that meets the tolerance,
+    else the BEM fine solve is the safe model. (Above the table's 50 the solver refuses the
+    scene too.)"""
     far = parse_scene(GOOD.replace("work = \"20 mJ/m^2\"", "work = \"1 mJ/m^2\""))
     assert far.mu < 0.01
     with pytest.raises(InputError, match="the scene's mu"):
         parse_scene(GOOD.replace("E = \"169 GPa\"", "E = \"0.1 MPa\""))
 
-    def solve(mu, **options):  # a stand-in for the solver: seconds, not minutes
-        return SimpleNamespace(values=lambda: {"p_off": -0.7}, error_estimate={"p_off": 0.1},
-                               message="")
+    def stand_in(estimates):  # a stand-in for the solver: seconds, not minutes
+        def solve(mu, *, accuracy, **options):
+            return SimpleNamespace(values=lambda: {"p_off": -0.7}, message="",
+                                   error_estimate={"p_off": estimates[accuracy]})
+        return solve
 
-    advice = advise(far, solve=solve)
+    advice = advise(far, solve=stand_in({"draft": 0.1, "default": 0.0035}))
     size = {e.name: e.size for e in advice.effects}
     assert size[TABLE] is None and size[DRAFT] == pytest.approx(0.1 / 0.7)
+    assert size[DEFAULT] == pytest.approx(0.005)
     assert all(m.error is None for m in advice.models if "closed form" in m.name)
-    assert advice.choice == "BEM default, the whole scene" and "safe model" in advice.message
+    assert advice.choice == "BEM default, the whole scene" and "0.005" in advice.message
+    assert advice.solves["default"].error_estimate["p_off"] == 0.0035  # run() reuses it
+    advice = advise(far, solve=stand_in({"draft": 0.1, "default": 0.05}))
+    assert advice.choice == "BEM fine, the whole scene" and "safe model" in advice.message
+
+
+def test_the_safe_models_error_is_its_default_solves_estimate_and_it_holds():
+    """A 300 MPa solid (μ = 1.95, R/ε = 167) at a tolerance below the draft's estimate
+    (1e-5): the BEM default solve is made with its own estimate, the safe model's error, and
+    chosen; against the BEM fine solve of the scene its P̄off is within that estimate (3.6e-7
+    against 4.7e-7)."""
+    scene = parse_scene(GOOD.replace("E = \"169 GPa\"", "E = \"300 MPa\"").replace(
+        "tolerance = 0.01", "tolerance = 1e-5"))
+    advice = advise(scene)
+    default = next(m for m in advice.models if m.name == "BEM default, the whole scene")
+    size = {e.name: e.size for e in advice.effects}
+    assert size[DRAFT] > 1e-5 and default.error == pytest.approx(size[DEFAULT])
+    assert advice.choice == default.name
+    fine = solve_curve(scene.mu, method="bem", accuracy="fine", error_estimate=False,
+                       radius_ratio=scene.scales.R / scene.scales.eps).events.p_off
+    assert abs(default.value / fine - 1.0) <= size[DEFAULT]
 
 
 def test_run_writes_the_chosen_models_answer_in_si_with_the_scene(tmp_path):
