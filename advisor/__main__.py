@@ -48,7 +48,8 @@ def main(argv=None):
     out = output_folder(args.out, "--out", OWNER) if args.run else None
     if scene.surface is None:
         print(f"mu = {scene.mu:.4g}, R/eps = {scene.scales.R / scene.scales.eps:.4g}: solving "
-              "the scene at BEM draft to measure its effects ...", file=sys.stderr)
+              "the scene at BEM draft to measure its effects (and at default, with its "
+              "estimate, where no cheaper model meets the tolerance) ...", file=sys.stderr)
     advice = advise(scene)
     if args.run:
         check_runnable(advice)  # before anything is run or written
