@@ -476,6 +476,11 @@ def _read_off_map(name, mu, zeta, sigma_r_eta):
     model, what = MAP_MODELS[name]
     shipped = shipped_map()
     found = measured_error(model, mu=mu, zeta=zeta, sigma_r_eta=sigma_r_eta, record=shipped)
+    if found is not None and found.missing:
+        return Effect(name, None, None, "not measured for this scene",
+                      "the measured map has no surface at " + "; ".join(
+                          ", ".join(f"{k} {v:g}" for k, v in zip(AXES, c))
+                          for c in found.missing) + ", around the scene (docs/rough_explicit.md)")
     if found is not None and found.size is None:
         return Effect(name, None, None, "not measured for this scene",
                       f"a surface of the measured map around the scene has no answer of {what} "

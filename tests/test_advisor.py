@@ -328,6 +328,24 @@ def test_inside_the_measured_map_gw_is_bounded_and_chosen(tmp_path):
     assert result["value"] == pytest.approx(once.value)
 
 
+def test_a_corner_of_the_map_not_solved_leaves_gw_unbounded_and_named(monkeypatch):
+    """Where a grid point around the scene has no surface on the map (a map that is not a
+    full product), the interaction is not bounded (no silent reading from the other corners):
+    the note names the point, and no GW model is chosen."""
+    import gw.explicit.measured_map as measured_map
+    from advisor.advice import INTERACTION
+
+    shipped = measured_map.shipped_map()
+    gap = {**shipped, "surfaces": [s for s in shipped["surfaces"]
+                                   if (s["mu"], s["zeta"], s["sigma_r_eta"]) != (1.0, 2.0, 0.05)]}
+    monkeypatch.setattr(measured_map, "shipped_map", lambda: gap)
+    advice = advise(parse_scene(INSIDE_THE_MAP))
+    effect = next(e for e in advice.effects if e.name == INTERACTION)
+    assert effect.size is None
+    assert "no surface at mu 1, zeta 2, sigma_r_eta 0.05" in effect.note
+    assert not advice.choice.startswith("GW")
+
+
 def test_validation_advisor_writes_each_scenes_effects_models_and_choice(tmp_path):
     """`python -m validation advisor`: one section per scene with a row per effect and per
     model of the advice, the choice, and the provenance line; a bad scene file among them stops

@@ -54,6 +54,18 @@ def test_outside_the_box_or_without_an_answer_nothing_is_read(grid):
         measured_error("gw_cellz", mu=0.5, zeta=1.0, sigma_r_eta=0.1, record=grid)
 
 
+def test_a_grid_point_not_solved_bounds_nothing_around_it(grid):
+    """A map whose grid is not a full product (a corner left out) gives no size around the
+    missing corner, and names it; elsewhere it reads as before."""
+    grid["surfaces"] = [s for s in grid["surfaces"]
+                        if (s["mu"], s["zeta"], s["sigma_r_eta"]) != (1.0, 2.0, 0.15)]
+    found = measured_error("gw_cells", mu=0.5, zeta=1.0, sigma_r_eta=0.1, record=grid)
+    assert found.size is None and found.missing == ((1.0, 2.0, 0.15),)
+    assert found.surfaces == 14
+    kept = measured_error("gw_cells", mu=0.5, zeta=1.0, sigma_r_eta=0.05, record=grid)
+    assert kept.missing == () and kept.size == pytest.approx(0.1 * 1.0 * 2.0 * 0.05 * 2)
+
+
 def test_a_point_at_the_edge_of_the_box_is_on_it_not_across_it(grid):
     """Within ON_GRID of the lowest μ the point is on that grid value (never bracketed by the
     top and bottom of the axis); a little farther it is outside."""

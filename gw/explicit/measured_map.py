@@ -9,6 +9,7 @@ the whole surface (None where the model's path stopped in tension: no answer of 
 `measured_error` reads off a model's error around a scene inside the map's box.
 """
 
+import itertools
 import json
 from dataclasses import dataclass
 from pathlib import Path
@@ -30,13 +31,15 @@ ON_GRID = 1e-6
 class MeasuredError:
     """A model's F̄max error read off the map around a point: `size` (the largest |error| over
     the `surfaces` solved at the grid points that bracket it; None where the model has no
-    answer on one of them), `uncertainty` (the largest of their whole surfaces' relative
-    estimates), `around` (each axis's bracketing values)."""
+    answer on one of them, or where one of them was not solved: `missing`), `uncertainty`
+    (the largest of their whole surfaces' relative estimates), `around` (each axis's
+    bracketing values)."""
 
     size: float | None
     uncertainty: float
     surfaces: int
     around: dict
+    missing: tuple = ()
 
 
 def map_record(records, provenance):
@@ -87,7 +90,8 @@ def measured_error(model, *, mu, zeta, sigma_r_eta, record=None):
     the map (`record`, by default the shipped one): the largest over the grid points that
     bracket it on every axis (up to eight, each with its draws), a first-order reading (the
     error between grid points is taken as no larger than at them). None outside the map's
-    box (or with no map); InputError for a model the map does not hold."""
+    box (or with no map); no size where a grid point around it was not solved (a map whose
+    grid is not a full product); InputError for a model the map does not hold."""
     record = shipped_map() if record is None else record
     if record is None:
         return None
@@ -99,6 +103,10 @@ def measured_error(model, *, mu, zeta, sigma_r_eta, record=None):
     if any(v is None for v in around.values()):
         return None
     near = [s for s in record["surfaces"] if all(s[k] in around[k] for k in AXES)]
+    solved = {tuple(s[k] for k in AXES) for s in near}
+    missing = tuple(c for c in itertools.product(*(around[k] for k in AXES)) if c not in solved)
     errors = [s["errors"][model] for s in near]
-    size = None if any(e is None for e in errors) else float(max(abs(e) for e in errors))
-    return MeasuredError(size, float(max(s["estimate"] for s in near)), len(near), around)
+    size = (None if missing or any(e is None for e in errors)
+            else float(max(abs(e) for e in errors)))
+    uncertainty = float(max((s["estimate"] for s in near), default=np.nan))
+    return MeasuredError(size, uncertainty, len(near), around, missing)
