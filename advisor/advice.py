@@ -358,6 +358,7 @@ INTERACTING = ("interacting asperities on the map's summits (python -m gw explic
                "interacting)")
 WHOLE = "the surface solved whole (python -m gw explicit on a height map)"
 STATISTICS = "the map's summits counted (σ_s, R, η) instead of its spectral moments"
+RADII = "every summit a cap of the mean radius instead of its own"
 
 
 def _advise_surface(scene):
@@ -366,7 +367,8 @@ def _advise_surface(scene):
     (the summits' elastic interaction, the ground lifted between them) read off the measured
     map (`_read_off_map`), unbounded outside it. On a height map of at most MAX_SUMMITS
     summits, the interacting asperities on them too, their error read off the same map (its
-    caps were of one R; the spread of a measured map's summit radii is not in it)."""
+    caps were of one R): the spread of the map's summit radii is computed for the map
+    (`_radii_effect`) and counted against both."""
     from gw.explicit.answer import MAX_SUMMITS
     from gw.integrate import strength
     from gw.laws import CorrectedLaw, PaperLaw
@@ -415,6 +417,9 @@ def _advise_surface(scene):
     if "spectral" in surface and "none" not in surface["spectral"]:  # (none: `scene._surface`)
         effects.append(_statistics_effect(scene, f_table, table))
         measured = (STATISTICS,)
+    if "topography" in surface:
+        effects.append(_radii_effect(scene))
+        measured += (RADII,)
     size = {e.name: _with_uncertainty(e) for e in effects}
     models = (
         _model("GW, the paper's law", f_paper, (PAPER_LAW, TABLE, GROUND, INTERACTION)
@@ -427,7 +432,7 @@ def _advise_surface(scene):
         _model("GW, the table, the ground counted once", f_once, (TABLE, INTERACTION)
                + measured, size, cost.get("once")))
     if interacting:  # each summit at its own place and height, all of the counted mean R
-        models += (_model(INTERACTING, None, (TABLE, FAR_FIELD), size, None),)
+        models += (_model(INTERACTING, None, (TABLE, FAR_FIELD, RADII), size, None),)
     models += (Model(WHOLE, None, (), None, None),)
     return _chosen(scene, effects, models, "no GW model is known to meet the tolerance (the "
                    "effects each leaves out sum to more, or one is not bounded here): the safe "
@@ -455,6 +460,22 @@ def _statistics_effect(scene, f_counted, table):
     return Effect(STATISTICS, abs(tension / counted - 1.0), None,
                   "computed for this map: GW with the table's law on both statistics "
                   f"({surface['summits']} summits counted at the pixel {surface['pixel']:.3g} m)")
+
+
+def _radii_effect(scene):
+    """How far the map's uncoupled summits' F_max moves where each is a cap of its own radius
+    instead of the mean one (`gw.explicit.radii`), on the separations `gw explicit` samples;
+    unbounded where a summit's own μ is outside the table."""
+    from gw.explicit.answer import separations
+    from gw.explicit.radii import own_radii
+
+    topography, adhesion = scene.topography(), _adhesion(scene)
+    spread = own_radii(topography, adhesion, separations(topography, adhesion, "default"),
+                       radius=scene.scales.R, mu=scene.mu)
+    how = (f"computed for this map: its {spread.summits} summits summed on the table's laws, "
+           f"each at its own radius ({spread.radii[0]:.3g}-{spread.radii[1]:.3g} m, mu "
+           f"{spread.mu[0]:.3g}-{spread.mu[1]:.3g}) and all at the mean")
+    return Effect(RADII, spread.size, None, how, spread.note)
 
 
 #: What each effect read off the measured map is measured as: (the map's model, what it is).

@@ -16,9 +16,11 @@ from advisor.advice import (
     DERJAGUIN,
     DRAFT,
     HOMOGENEOUS,
+    RADII,
     RIGID,
     STATISTICS,
     TABLE,
+    WHOLE,
 )
 from fem_asperity import InputError, solve_curve
 from fem_asperity.closed_forms.reference import dmt_pull_off
@@ -503,6 +505,12 @@ def test_a_measured_map_is_a_scene_its_summits_counted_and_its_spectrum_beside(m
     assert effect.size > 0.5 and "summits counted" in effect.how
     for model in advice.models:
         assert (STATISTICS in model.leaves_out) == model.name.startswith("GW")
+    # caps of one radius: each summit's own radius is the mean, and the effect of taking the
+    # mean is nil; every model but the whole surface still counts it
+    radii = next(e for e in advice.effects if e.name == RADII)
+    assert radii.size == pytest.approx(0.0, abs=1e-9) and "computed for this map" in radii.how
+    for model in advice.models:
+        assert (RADII in model.leaves_out) == (model.name != WHOLE)
     json.dumps(advice.records(), allow_nan=False)
 
 
@@ -516,7 +524,6 @@ def test_run_solves_the_scenes_height_map_whole_where_gw_is_not_bounded(tmp_path
     its estimate; the cheaper models' errors against it and the whole surface's files are
     written beside."""
     from advisor.__main__ import main
-    from advisor.advice import WHOLE
     from gw.explicit import Adhesion, Topography, solve_whole
 
     scene_file, heights = _caps_map(tmp_path, 64)

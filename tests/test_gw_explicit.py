@@ -70,6 +70,12 @@ def test_the_cheap_models_need_no_whole_solve(caps_map):
     out = json.loads(run.stdout)
     assert set(out["models"]) == {"gw", "interacting"} and out["needs"] is None
     assert out["si"]["force_max"] == out["models"]["interacting"]["force_max"]
+    # caps of one radius (the 5-point curvature is exact on a paraboloid): taking each
+    # summit's own radius instead of the mean moves nothing
+    radii = out["statistics"]["radii"]
+    assert radii["size"] == pytest.approx(0.0, abs=1e-9)
+    assert radii["summits"] == out["statistics"]["summits"]["count"]
+    assert radii["radii"] == pytest.approx([RADIUS, RADIUS], rel=1e-9)
 
 
 @pytest.mark.parametrize("change, says", [

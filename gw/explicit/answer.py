@@ -21,6 +21,7 @@ from ..integrate import strength, totals
 from ..surface import RoughSurface
 from .compare import settled, within
 from .interacting import AsperityLaw, Interacting, coupling
+from .radii import own_radii
 from .tails import SharedTails
 from .topography import spectral_summit_statistics, summit_statistics, summits
 from .whole import check_map, most_tensile, solve_whole
@@ -53,9 +54,10 @@ class Answer:
     """The answer for one map: `models` (name → ModelAnswer), `whole` (the `WholeSurface`, or
     None), `relative_to_whole` (name → F_max/F_max(whole) − 1), `needs` (the cheapest model
     `compare.within` the whole surface, its estimate counted, on a `compare.settled` path;
-    None without the whole surface), `statistics` (the summits counted and the spectral
-    estimate), `mu` (at the summit radius), `notes` (what was left out and why), `law`: where
-    the asperity law of GW and the interacting model came from."""
+    None without the whole surface), `statistics` (the summits counted, the spectral estimate,
+    and `radii`: the summits' own radii against their mean, a `radii.RadiusSpread` as a dict),
+    `mu` (at the summit radius), `notes` (what was left out and why), `law`: where the
+    asperity law of GW and the interacting model came from."""
 
     models: dict
     whole: object
@@ -111,7 +113,7 @@ def answer(topography, adhesion, *, model="whole", accuracy="default", radius=No
     unit_force = 2 * np.pi * radius * adhesion.dgamma
     area = topography.heights.size * topography.pixel**2
     notes, models = [], {}
-    d_grid = _separations(topography, adhesion, accuracy)
+    d_grid = separations(topography, adhesion, accuracy)
 
     started = time.perf_counter()
     # GW on the summits' own Gaussian: σ_s = their rms height, ω = 1 (the reading that needs
@@ -149,7 +151,9 @@ def answer(topography, adhesion, *, model="whole", accuracy="default", radius=No
                      and within(models[name].force_max, reference,
                                 whole.error_estimate["force_max"],
                                 settled(models[name].stopped, models[name].force)))
-    statistics = {"summits": vars(counted), "spectral": vars(spectral) if spectral else None}
+    statistics = {"summits": vars(counted), "spectral": vars(spectral) if spectral else None,
+                  "radii": vars(own_radii(topography, adhesion, d_grid, radius=radius,
+                                           mu=scales.mu))}
     return Answer(models, whole, relative, needs, statistics, scales.mu, radius, tuple(notes),
                   law.source)
 
@@ -162,7 +166,7 @@ def _spectral(topography):
         return None
 
 
-def _separations(topography, adhesion, accuracy):
+def separations(topography, adhesion, accuracy):
     """The d (m) the cheap models are sampled at: the whole surface's approach grid."""
     from .whole import START_GAP, STEPS
 

@@ -1,0 +1,70 @@
+"""What one mean summit radius does to a map's strength (gw.explicit.radii), against Bradley's
+rigid sphere summed by hand: near the rigid limit the solved law is Bradley's at every μ."""
+
+import numpy as np
+import pytest
+
+from fem_asperity.closed_forms.lj import bradley_force
+from gw.explicit.radii import own_radii
+from gw.explicit.topography import Topography
+from gw.explicit.whole import Adhesion
+
+EPS, DGAMMA, PIXEL = 0.3e-9, 0.1, 2e-9
+
+
+def _caps(radii, heights, n=200):
+    """Caps (z = zᵢ − r²/2Rᵢ) 100 pixels apart on a free map of n² pixels."""
+    x = (np.arange(n) - n / 2) * PIXEL
+    X, Y = np.meshgrid(x, x, indexing="ij")
+    centres = np.linspace(-50, 50, len(radii)) * PIXEL
+    z = np.max([h - ((X - c) ** 2 + Y**2) / (2 * r)
+                for r, h, c in zip(radii, heights, centres)], axis=0)
+    return Topography(z, PIXEL)
+
+
+def _spread(topography, mu, radius, d):
+    """own_radii against `radius` where E* gives it Tabor parameter `mu` (μ³ = RΔγ²/(E*²ε³))."""
+    adhesion = Adhesion(np.sqrt(radius * DGAMMA**2 / (mu**3 * EPS**3)), DGAMMA, EPS)
+    return own_radii(topography, adhesion, d, radius=radius, mu=mu)
+
+
+def _bradley_f_max(radii, heights, d):
+    force = sum(2 * np.pi * DGAMMA * r * bradley_force((d - z) / EPS)
+                for r, z in zip(radii, heights))
+    return -force.min()
+
+
+@pytest.mark.parametrize("offset", [0.0, -0.6])
+def test_near_the_rigid_limit_the_summits_own_radii_sum_bradleys_forces(offset):
+    """Caps of 100 and 300 nm (the mean radius, 1/mean curvature, is their harmonic mean
+    150 nm) at μ = 0.02: each sum's F_max is Bradley's summed by hand (the law at μ ≤ 0.025
+    within 0.5 % of the rigid one), and with equal heights the size is the ratio of the
+    arithmetic to the harmonic mean less one, 1/3."""
+    radii, heights = (100e-9, 300e-9), (0.0, offset * EPS)
+    d = np.arange(6.0, 0.4, -0.002) * EPS
+    spread = _spread(_caps(radii, heights), 0.02, 150e-9, d)
+    assert spread.summits == 2
+    assert spread.radii == pytest.approx(radii, rel=1e-9)
+    assert spread.f_max_own == pytest.approx(_bradley_f_max(radii, heights, d), rel=5e-3)
+    assert spread.f_max_one == pytest.approx(_bradley_f_max((150e-9,) * 2, heights, d),
+                                              rel=5e-3)
+    if offset == 0.0:
+        assert spread.size == pytest.approx(1 / 3, rel=5e-3)
+
+
+def test_summits_of_one_radius_have_no_spread():
+    d = np.arange(5.0, -2.0, -0.05) * EPS
+    spread = _spread(_caps((200e-9,) * 3, (0.0, -EPS, -2 * EPS)), 1.0, 200e-9, d)
+    assert spread.size == pytest.approx(0.0, abs=1e-9)
+    assert spread.mu == pytest.approx((1.0, 1.0), rel=1e-6)
+
+
+def test_a_summit_whose_own_mu_is_outside_the_table_bounds_nothing():
+    """μ ∝ R^(1/3): a summit 27 times sharper than the mean radius's μ = 0.012 sits at 0.004,
+    below the table of solved laws: no size, and the note says how many and where."""
+    radii = (3000e-9, 3000e-9 / 27)
+    d = np.arange(5.0, 0.5, -0.05) * EPS
+    mean = 1 / np.mean([1 / r for r in radii])
+    spread = _spread(_caps(radii, (0.0, 0.0)), 0.012, mean, d)
+    assert spread.size is None and spread.f_max_own is None
+    assert "1 of 2 summits have mu outside the table of solved laws' 0.01-50" in spread.note
