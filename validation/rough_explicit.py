@@ -28,9 +28,10 @@ from .report import counted
 
 #: The quick tier: six caps at μ = 1, ζ = 2, σRη = 0.05 (a 58² map; seconds).
 QUICK = ({"mu": 1.0, "zeta": 2.0, "sigma_r_eta": 0.05, "summits": 6},)
-#: The map: μ below and above the jump-in onset (0.697), ζ smooth to rough, σRη sparse to
-#: crowded; pixels by `map_pixel` (methods.md §14). Not pinned by a test.
-MAP_MU, MAP_ZETA, MAP_SRE = (0.1, 0.3, 1.0, 2.0), (0.5, 2.0, 6.0), (0.02, 0.05, 0.15)
+#: The map: μ below and above the jump-in onset (0.697), ζ smooth to rough (to 12: MEMS
+#: surfaces, σ of nanometres on ε of tenths), σRη sparse to crowded; pixels by `map_pixel`
+#: (methods.md §14). Not pinned by a test.
+MAP_MU, MAP_ZETA, MAP_SRE = (0.1, 0.3, 1.0, 2.0), (0.5, 2.0, 6.0, 12.0), (0.02, 0.05, 0.15)
 #: The map's pixel (√(Rε)) where μ allows: compliance number μ^1.5 a/π = 0.064 at μ = 1, where
 #: one cap's F̄max was 8.5e-4 off the boundary integral (test_whole_surface.py).
 MAP_PIXEL = 0.2
