@@ -23,8 +23,10 @@ For a rough surface's F̄max (GW), the laws are judged against the table and the
 summits counted once in closed form; what GW leaves out beyond those, the summits' elastic
 interaction, is read off the measured map the package ships (`gw.explicit.measured_map`), and
 is unbounded outside it. On a height map the interacting asperities on its own summits are a
-model too, their error (the far field's) read off the same map; `run` answers by them or by
-the map solved whole as `gw explicit` does.
+model too, their error (the far field's) read off the same map; the spread of the map's
+summit radii, which the map's caps of one R do not have, is computed for the map
+(`gw.explicit.radii`) and counted against every model but the whole surface; `run` answers by
+the interacting asperities or by the map solved whole as `gw explicit` does.
 
 A model's error is the sum of the sizes and uncertainties of the effects it leaves out, each
 measured alone against its own reference: a first-order estimate, not a bound on effects that
