@@ -477,7 +477,7 @@ def _radii_effect(scene):
     how = (f"computed for this map: its {spread.summits} summits summed on the table's laws, "
            f"each at its own radius ({spread.radii[0]:.3g}-{spread.radii[1]:.3g} m, mu "
            f"{spread.mu[0]:.3g}-{spread.mu[1]:.3g}) and all at the mean")
-    return Effect(RADII, spread.size, None, how, spread.note)
+    return Effect(RADII, spread.size, spread.uncertainty, how, spread.note)
 
 
 #: What each effect read off the measured map is measured as: (the map's model, what it is).
@@ -502,7 +502,7 @@ def _read_off_map(name, mu, zeta, sigma_r_eta):
     if found is not None and found.missing:
         return Effect(name, None, None, "not measured for this scene",
                       "the measured map has no surface at " + "; ".join(
-                          ", ".join(f"{k} {v:g}" for k, v in zip(AXES, c))
+                          ", ".join(f"{k} {v:g}" for k, v in zip(AXES + ("seed",), c))
                           for c in found.missing) + ", around the scene (docs/rough_explicit.md)")
     if found is not None and found.size is None:
         return Effect(name, None, None, "not measured for this scene",

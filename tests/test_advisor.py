@@ -344,7 +344,7 @@ def test_a_corner_of_the_map_not_solved_leaves_gw_unbounded_and_named(monkeypatc
     advice = advise(parse_scene(INSIDE_THE_MAP))
     effect = next(e for e in advice.effects if e.name == INTERACTION)
     assert effect.size is None
-    assert "no surface at mu 1, zeta 2, sigma_r_eta 0.05" in effect.note
+    assert "no surface at mu 1, zeta 2, sigma_r_eta 0.05, seed 0" in effect.note
     assert not advice.choice.startswith("GW")
 
 

@@ -60,10 +60,19 @@ def test_a_grid_point_not_solved_bounds_nothing_around_it(grid):
     grid["surfaces"] = [s for s in grid["surfaces"]
                         if (s["mu"], s["zeta"], s["sigma_r_eta"]) != (1.0, 2.0, 0.15)]
     found = measured_error("gw_cells", mu=0.5, zeta=1.0, sigma_r_eta=0.1, record=grid)
-    assert found.size is None and found.missing == ((1.0, 2.0, 0.15),)
+    assert found.size is None and found.missing == ((1.0, 2.0, 0.15, 0), (1.0, 2.0, 0.15, 1))
     assert found.surfaces == 14
     kept = measured_error("gw_cells", mu=0.5, zeta=1.0, sigma_r_eta=0.05, record=grid)
     assert kept.missing == () and kept.size == pytest.approx(0.1 * 1.0 * 2.0 * 0.05 * 2)
+
+
+def test_a_draw_not_solved_bounds_nothing_at_its_grid_point(grid):
+    """One of a grid point's two draws left out (a map resumed half-way): the point is not
+    read from the other draw alone."""
+    grid["surfaces"] = [s for s in grid["surfaces"]
+                        if (s["mu"], s["zeta"], s["sigma_r_eta"], s["seed"]) != (0.3, 0.5, 0.05, 1)]
+    found = measured_error("gw_cells", mu=0.3, zeta=0.5, sigma_r_eta=0.05, record=grid)
+    assert found.size is None and found.missing == ((0.3, 0.5, 0.05, 1),)
 
 
 def test_a_point_at_the_edge_of_the_box_is_on_it_not_across_it(grid):

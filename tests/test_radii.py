@@ -59,12 +59,51 @@ def test_summits_of_one_radius_have_no_spread():
     assert spread.mu == pytest.approx((1.0, 1.0), rel=1e-6)
 
 
+def test_at_mu_one_each_summit_takes_the_law_solved_at_its_own_mu():
+    """Caps of 100 and 300 nm at μ = 1 for their harmonic mean 150 nm: the summits' μ are
+    (100/150)^(1/3) and 2^(1/3) (μ³ ∝ R), and the sum over them at their own radii is that of
+    the laws solved (BEM default, not the table) at those μ, within the table's stated F̄max
+    error; the one-radius sum likewise with the law solved at μ = 1. Jump-ins and their μ
+    dependence are in both."""
+    from gw.explicit.interacting import AsperityLaw
+
+    radii, heights = (100e-9, 300e-9), (0.0, -0.7 * EPS)
+    d = np.arange(5.0, -1.0, -0.01) * EPS
+    spread = _spread(_caps(radii, heights), 1.0, 150e-9, d)
+    mus = (1.0 * (2 / 3) ** (1 / 3), 2 ** (1 / 3))
+    assert spread.mu == pytest.approx(mus, rel=1e-9)
+
+    def f_max(laws, weights):
+        force = sum(2 * np.pi * DGAMMA * r * law.approach.force((d - z) / EPS)
+                    for r, law, z in zip(weights, laws, heights))
+        return -force.min()
+
+    solved = [AsperityLaw.solved(m) for m in mus]
+    tolerance = 2 * spread.uncertainty
+    assert spread.f_max_own == pytest.approx(f_max(solved, radii), rel=tolerance)
+    one = AsperityLaw.solved(1.0)
+    assert spread.f_max_one == pytest.approx(f_max([one, one], (150e-9,) * 2), rel=tolerance)
+    assert spread.size > 10 * tolerance  # a spread that matters, resolved
+
+
 def test_a_summit_whose_own_mu_is_outside_the_table_bounds_nothing():
-    """μ ∝ R^(1/3): a summit 27 times sharper than the mean radius's μ = 0.012 sits at 0.004,
-    below the table of solved laws: no size, and the note says how many and where."""
-    radii = (3000e-9, 3000e-9 / 27)
+    """μ ∝ R^(1/3): four caps of 3 µm and one 27 times sharper have the harmonic mean radius
+    484 nm; at μ = 0.012 there, the sharp one sits at 0.0073, below the table of solved laws
+    (the flat ones at 0.022, inside): no size, and the note counts the one."""
+    radii = (3000e-9,) * 4 + (3000e-9 / 27,)
     d = np.arange(5.0, 0.5, -0.05) * EPS
-    mean = 1 / np.mean([1 / r for r in radii])
-    spread = _spread(_caps(radii, (0.0, 0.0)), 0.012, mean, d)
+    mean = len(radii) / sum(1 / r for r in radii)
+    spread = _spread(_caps(radii, (0.0,) * 5), 0.012, mean, d)
     assert spread.size is None and spread.f_max_own is None
-    assert "1 of 2 summits have mu outside the table of solved laws' 0.01-50" in spread.note
+    assert spread.mu == pytest.approx((0.012 / 27 ** (1 / 3) * (3000e-9 / mean) ** (1 / 3),
+                                       0.012 * (3000e-9 / mean) ** (1 / 3)), rel=1e-9)
+    assert "1 of 5 summits have mu outside the table of solved laws' 0.01-50" in spread.note
+
+
+def test_a_radius_whose_own_mu_is_outside_the_table_bounds_nothing():
+    """A user's radius (gw explicit --R) far above the summits' puts its μ above the table
+    though every summit's is inside: no size, the note names it."""
+    d = np.arange(5.0, 0.5, -0.05) * EPS
+    spread = _spread(_caps((200e-9,) * 2, (0.0, -EPS)), 60.0, 200e-6, d)
+    assert spread.size is None
+    assert "mu = 60 at the radius 0.0002 m is outside the table" in spread.note

@@ -114,6 +114,7 @@ def answer(topography, adhesion, *, model="whole", accuracy="default", radius=No
     area = topography.heights.size * topography.pixel**2
     notes, models = [], {}
     d_grid = separations(topography, adhesion, accuracy)
+    spread = own_radii(topography, adhesion, d_grid, radius=radius, mu=scales.mu)
 
     started = time.perf_counter()
     # GW on the summits' own Gaussian: σ_s = their rms height, ω = 1 (the reading that needs
@@ -152,8 +153,7 @@ def answer(topography, adhesion, *, model="whole", accuracy="default", radius=No
                                 whole.error_estimate["force_max"],
                                 settled(models[name].stopped, models[name].force)))
     statistics = {"summits": vars(counted), "spectral": vars(spectral) if spectral else None,
-                  "radii": vars(own_radii(topography, adhesion, d_grid, radius=radius,
-                                           mu=scales.mu))}
+                  "radii": vars(spread)}
     return Answer(models, whole, relative, needs, statistics, scales.mu, radius, tuple(notes),
                   law.source)
 

@@ -89,9 +89,11 @@ def main(args, parser):
             print(f"this surface needs: {found.needs} (within 10% of the whole surface)")
         radii = found.statistics["radii"]
         if radii["size"] is not None:  # else its note says why
-            print(f"gw and interacting take every summit as a cap of the mean radius: each at "
-                  f"its own ({radii['radii'][0]:.3g}-{radii['radii'][1]:.3g} m) moves the "
-                  f"uncoupled summits' F_max by {100 * radii['size']:.3g} %")
+            print(f"{' and '.join(n for n in ('gw', 'interacting') if n in found.models)} take "
+                  f"every summit as a cap of radius {found.radius:.4g} m: each at its own "
+                  f"({radii['radii'][0]:.3g}-{radii['radii'][1]:.3g} m) moves the uncoupled "
+                  f"summits' F_max by {100 * radii['size']:.3g} % "
+                  f"(± {100 * radii['uncertainty']:.2g} %)")
     if found.statistics["radii"]["note"]:
         print(f"note: radii: {found.statistics['radii']['note']}", file=sys.stderr)
     if found.whole is not None and found.whole.status != "ok":

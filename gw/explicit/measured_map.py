@@ -31,9 +31,10 @@ ON_GRID = 1e-6
 class MeasuredError:
     """A model's F̄max error read off the map around a point: `size` (the largest |error| over
     the `surfaces` solved at the grid points that bracket it; None where the model has no
-    answer on one of them, or where one of them was not solved: `missing`), `uncertainty`
-    (the largest of their whole surfaces' relative estimates), `around` (each axis's
-    bracketing values)."""
+    answer on one of them, or where one of them, or one of its draws, was not solved:
+    `missing`, as (μ, ζ, σRη, seed)), `uncertainty` (the largest of their whole surfaces'
+    relative estimates; NaN where none was solved), `around` (each axis's bracketing
+    values)."""
 
     size: float | None
     uncertainty: float
@@ -90,8 +91,9 @@ def measured_error(model, *, mu, zeta, sigma_r_eta, record=None):
     the map (`record`, by default the shipped one): the largest over the grid points that
     bracket it on every axis (up to eight, each with its draws), a first-order reading (the
     error between grid points is taken as no larger than at them). None outside the map's
-    box (or with no map); no size where a grid point around it was not solved (a map whose
-    grid is not a full product); InputError for a model the map does not hold."""
+    box (or with no map); no size where a grid point around it, or one of the map's draws
+    there, was not solved (a map that is not a full product); InputError for a model the map
+    does not hold."""
     record = shipped_map() if record is None else record
     if record is None:
         return None
@@ -103,8 +105,10 @@ def measured_error(model, *, mu, zeta, sigma_r_eta, record=None):
     if any(v is None for v in around.values()):
         return None
     near = [s for s in record["surfaces"] if all(s[k] in around[k] for k in AXES)]
-    solved = {tuple(s[k] for k in AXES) for s in near}
-    missing = tuple(c for c in itertools.product(*(around[k] for k in AXES)) if c not in solved)
+    draws = sorted({s["seed"] for s in record["surfaces"]})
+    solved = {tuple(s[k] for k in AXES + ("seed",)) for s in near}
+    missing = tuple(c for c in itertools.product(*(around[k] for k in AXES), draws)
+                    if c not in solved)
     errors = [s["errors"][model] for s in near]
     size = (None if missing or any(e is None for e in errors)
             else float(max(abs(e) for e in errors)))
