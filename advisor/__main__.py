@@ -50,7 +50,7 @@ def main(argv=None):
         print(f"mu = {scene.mu:.4g}, R/eps = {scene.scales.R / scene.scales.eps:.4g}: solving "
               "the scene at BEM draft to measure its effects (and at default, with its "
               "estimate, where no cheaper model meets the tolerance) ...", file=sys.stderr)
-    advice = advise(scene)
+    advice = advise(scene, measure=args.run, say=lambda m: print(m, file=sys.stderr))
     if args.run:
         check_runnable(advice)  # before anything is run or written
     record = advice.records()

@@ -37,7 +37,7 @@ safe one, the `fine` solve; it says so.
 """
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -169,11 +169,13 @@ def _layer_record(solid):
             "modulus_ratio": solid.layer_modulus_ratio}
 
 
-def advise(scene, *, solve=None):
+def advise(scene, *, solve=None, measure=False, say=None):
     """The `Advice` for `scene` (a `scene.Scene`). solve: the curve solver (`solve_curve`
-    by default; tests pass a stand-in)."""
+    by default; tests pass a stand-in). measure: on a GW surface given by σ, R, η outside the
+    measured map, measure the summits' interaction at the scene itself (`_measured_here`:
+    seconds to minutes) instead of leaving it unbounded; `say(message)` is told first."""
     if scene.surface is not None:
-        return _advise_surface(scene)
+        return _advise_surface(scene, measure, say)
     if solve is None:
         from fem_asperity.solver.solve import solve_curve as solve
     mu, forms = scene.mu, CLOSED_FORMS[scene.quantity]
@@ -363,7 +365,7 @@ STATISTICS = "the map's summits counted (σ_s, R, η) instead of its spectral mo
 RADII = "every summit a cap of the mean radius instead of its own"
 
 
-def _advise_surface(scene):
+def _advise_surface(scene, measure=False, say=None):
     """F̄max of a GW surface: each law against the table of solved laws, the ground between
     summits counted once in closed form (`gw.shared_ground`); what GW leaves out beyond that
     (the summits' elastic interaction, the ground lifted between them) read off the measured
@@ -384,6 +386,10 @@ def _advise_surface(scene):
     lo, hi = table.mu_range
     zeta = surface["sigma"] / s.eps
     effects = [_read_off_map(INTERACTION, scene.mu, zeta, sigma_r_eta)]
+    if effects[0].size is None and "topography" not in surface:
+        effects[0] = (_measured_here(effects[0], scene.mu, zeta, sigma_r_eta, say) if measure
+                      else replace(effects[0], note=f"{effects[0].note}; python -m advisor "
+                                   "--run measures it at the scene"))
     interacting = "topography" in surface and surface["summits"] <= MAX_SUMMITS
     if interacting:
         effects.append(_read_off_map(FAR_FIELD, scene.mu, zeta, sigma_r_eta))
@@ -522,6 +528,30 @@ def _read_off_map(name, mu, zeta, sigma_r_eta):
                   f"around the scene ({around})")
 
 
+def _measured_here(unbounded, mu, zeta, sigma_r_eta, say=None):
+    """The effect `unbounded` (one of MAP_MODELS, outside the map) measured at the scene's own
+    point as the map is made (`gw.explicit.measured_map.measure_at`); as it was, its note
+    saying why, where that surface cannot be made or the model has no answer on it."""
+    from gw.explicit.measured_map import MAP_SEEDS, MAP_SUMMITS, measure_at
+
+    model, what = MAP_MODELS[unbounded.name]
+    if say:
+        say(f"measuring {unbounded.name} at the scene itself (mu = {mu:.3g}, zeta = {zeta:.3g}, "
+            f"sigma R eta = {sigma_r_eta:.3g}, outside the measured map): {len(MAP_SEEDS)} GW "
+            f"surfaces made explicit, {MAP_SUMMITS} caps each, solved whole ...")
+    try:
+        found = measure_at(model, mu=mu, zeta=zeta, sigma_r_eta=sigma_r_eta)
+    except InputError as exc:
+        return replace(unbounded, note=f"{unbounded.note}; not measurable here either: {exc}")
+    how = (f"computed for this scene: the largest error of {what} against the surface solved "
+           f"whole, on {found.surfaces} GW surfaces made explicit at its mu, zeta, sigma R eta "
+           f"({MAP_SUMMITS} caps each, as the measured map's)")
+    if found.size is None:
+        return Effect(unbounded.name, None, None, how, f"{what} found no equilibrium before "
+                      "the total force turned compressive on one of them")
+    return Effect(unbounded.name, found.size, found.uncertainty, how)
+
+
 def run(advice, *, solve=None, progress=None):
     """The chosen model run: the `CurveResult` of its solve (the draft the advice already has,
     or the BEM `default` solve of the whole scene with its error estimate), the `gw.explicit`
@@ -552,9 +582,12 @@ def check_runnable(advice):
     if advice.choice not in SURFACE_MODELS:
         return
     if "topography" not in scene.surface:
+        why = next(e for e in advice.effects if e.name == INTERACTION)
+        said = (f"{INTERACTION}: {why.size:.3g} ({why.how})" if why.size is not None
+                else f"{INTERACTION}: not bounded ({why.note})")
         raise InputError(f"--run: the model chosen, {advice.choice}, needs the surface's height "
                          "map: give [surface] topography, or run python -m gw explicit "
-                         "--topography MAP ... (the advice without --run shows why)")
+                         f"--topography MAP ...; {said}")
     from gw.explicit.whole import check_map
 
     try:

@@ -348,6 +348,65 @@ def test_a_corner_of_the_map_not_solved_leaves_gw_unbounded_and_named(monkeypatc
     assert not advice.choice.startswith("GW")
 
 
+#: A GW surface at μ = 0.1 (E* = 10^1.5 GPa for R = 100 nm, ε = 1 nm, Δγ = 0.1 J/m²), ζ = 20,
+#: σRη = 0.05: rougher than the measured map reaches (ζ ≤ 12).
+BEYOND_THE_MAP = INSIDE_THE_MAP.replace('E = "1 GPa"', 'E = "31.6227766017 GPa"').replace(
+    'sigma = "2 nm"', 'sigma = "20 nm"').replace('density = "250 /um^2"', 'density = "25 /um^2"')
+
+
+def test_beyond_the_map_run_measures_gw_at_the_scene_and_answers(tmp_path):
+    """Outside the measured map the summits' interaction is not bounded, and the note says that
+    --run measures it; with --run it is measured at the scene as the map is made (two GW
+    surfaces made explicit, solved whole at draft, the table's law), agreeing with the map's
+    own way (the law solved by the BEM) within 1e-3; bounded so, a GW model is chosen and its
+    F̄max written in Pa."""
+    from advisor.__main__ import main
+    from advisor.advice import INTERACTION
+    from gw.explicit import compare
+    from gw.explicit.measured_map import MAP_SEEDS, map_scene
+
+    scene_file = tmp_path / "beyond.toml"
+    scene_file.write_text(BEYOND_THE_MAP)
+    scene = read_scene(scene_file)
+    s, surface = scene.scales, scene.surface
+    point = (scene.mu, surface["sigma"] / s.eps, surface["sigma"] * s.R * surface["density"])
+    assert point == pytest.approx((0.1, 20.0, 0.05), rel=1e-9)
+    unbounded = next(e for e in advise(scene).effects if e.name == INTERACTION)
+    assert unbounded.size is None and "--run measures it at the scene" in unbounded.note
+    said = []
+    advice = advise(scene, measure=True, say=said.append)
+    measured = next(e for e in advice.effects if e.name == INTERACTION)
+    assert "computed for this scene" in measured.how and len(said) == 1
+    by_the_map = max(abs(compare(map_scene(0.1, 20.0, 0.05, seed), accuracy="draft")
+                         .errors["gw_cells"]) for seed in MAP_SEEDS)
+    assert measured.size == pytest.approx(by_the_map, abs=1e-3)
+    chosen = next(m for m in advice.models if m.name == advice.choice)
+    assert chosen.name.startswith("GW") and chosen.error <= scene.tolerance
+    assert INTERACTION in chosen.leaves_out
+    out = tmp_path / "o"
+    assert main([str(scene_file), "--run", "--out", str(out)]) == 0
+    result = json.loads((out / "advice.json").read_text())["result"]
+    assert result["model"] == chosen.name and result["unit"] == "Pa"
+    assert result["value"] == pytest.approx(chosen.value)
+
+
+def test_where_gw_measured_at_the_scene_misses_run_says_so_and_writes_nothing(tmp_path):
+    """At μ = 1, ζ = 0.3, σRη = 0.05 (smoother than the map reaches) GW's sum with the ground
+    counted once was 82 % above the surfaces solved whole in a run here: no GW model meets 10 %,
+    the safe model needs a height map, and --run stops in one line that gives the measured
+    size, writing nothing."""
+    from advisor.__main__ import main
+
+    scene_file = tmp_path / "smooth.toml"
+    scene_file.write_text(INSIDE_THE_MAP.replace('sigma = "2 nm"', 'sigma = "0.3 nm"').replace(
+        'density = "250 /um^2"', 'density = "1666.6666667 /um^2"'))
+    with pytest.raises(InputError, match=r"needs the surface's height map.*instead of the "
+                                         r"surface solved whole: [0-9.]+ \(computed for this "
+                                         r"scene"):
+        main([str(scene_file), "--run", "--out", str(tmp_path / "o")])
+    assert not (tmp_path / "o").exists()
+
+
 def test_validation_advisor_writes_each_scenes_effects_models_and_choice(tmp_path):
     """`python -m validation advisor`: one section per scene with a row per effect and per
     model of the advice, the choice, and the provenance line; a bad scene file among them stops

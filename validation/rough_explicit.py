@@ -23,36 +23,20 @@ from fem_asperity.plumbing.provenance import git_commit
 from fem_asperity.plumbing.revision import code_revision, solver_revision
 from fem_asperity.studies.store import cache_dir, stored_curve
 from gw.explicit.compare import settled
+from gw.explicit.measured_map import ACCURACY, MAP_SEEDS, MAP_SUMMITS, map_scene
 
 from .report import counted
 
 #: The quick tier: six caps at μ = 1, ζ = 2, σRη = 0.05 (a 58² map; seconds).
 QUICK = ({"mu": 1.0, "zeta": 2.0, "sigma_r_eta": 0.05, "summits": 6},)
 #: The map: μ below and above the jump-in onset (0.697), ζ smooth to rough (to 12: MEMS
-#: surfaces, σ of nanometres on ε of tenths), σRη sparse to crowded; pixels by `map_pixel`
-#: (methods.md §14). Not pinned by a test.
+#: surfaces, σ of nanometres on ε of tenths), σRη sparse to crowded; each surface as
+#: `gw.explicit.measured_map.map_scene` makes it (methods.md §14). Not pinned by a test.
 MAP_MU, MAP_ZETA, MAP_SRE = (0.1, 0.3, 1.0, 2.0), (0.5, 2.0, 6.0, 12.0), (0.02, 0.05, 0.15)
-#: The map's pixel (√(Rε)) where μ allows: compliance number μ^1.5 a/π = 0.064 at μ = 1, where
-#: one cap's F̄max was 8.5e-4 off the boundary integral (test_whole_surface.py).
-MAP_PIXEL = 0.2
-#: Summits per surface, and two draws of each surface: the spread between them is the
-#: sample's share of each model's error.
-MAP_SUMMITS, MAP_SEEDS = 16, (0, 1)
-ACCURACY = "draft"
 #: Self-affine surfaces, answered as a user's map is (`gw.explicit.answer`), within the map's
 #: resolution bounds at μ = 1, ζ ≤ 2 (methods.md §14). Not pinned by a test.
 AFFINE = {"n": 128, "hurst": 0.8, "short": 12, "long": 64}
 AFFINE_MU, AFFINE_ZETA, AFFINE_SEEDS = (0.3, 1.0), (1.0, 2.0), (1, 2)
-
-
-def map_pixel(mu):
-    """The pixel (√(Rε)) of the map's surfaces at Tabor parameter `mu`: MAP_PIXEL, or finer
-    where the compliance number μ^1.5 a/π would pass the whole-surface solver's warning bound
-    (`whole.COMPLIANCE_MAX`, 0.1: 0.111 at μ = 2; its F̄max error there is a few 1e-3, beside
-    the map's 10 % verdicts)."""
-    from gw.explicit.whole import COMPLIANCE_MAX
-
-    return min(MAP_PIXEL, COMPLIANCE_MAX * np.pi / mu**1.5)
 
 
 def scenes(full):
@@ -61,8 +45,7 @@ def scenes(full):
 
     if not full:
         return [Scene(**s) for s in QUICK]
-    return [Scene(mu=mu, zeta=zeta, sigma_r_eta=sre, summits=MAP_SUMMITS, seed=seed,
-                  pixel=map_pixel(mu))
+    return [map_scene(mu, zeta, sre, seed)
             for mu in MAP_MU for zeta in MAP_ZETA for sre in MAP_SRE for seed in MAP_SEEDS]
 
 

@@ -22,6 +22,14 @@ from fem_asperity.plumbing.files import write_atomic
 MAP_FILE = Path(__file__).parents[1] / "data" / "rough_map.json"
 #: The grid's axes, in the order `measured_error` brackets them.
 AXES = ("mu", "zeta", "sigma_r_eta")
+#: The map's pixel (√(Rε)) where μ allows: compliance number μ^1.5 a/π = 0.064 at μ = 1, where
+#: one cap's F̄max was 8.5e-4 off the boundary integral (test_whole_surface.py).
+MAP_PIXEL = 0.2
+#: Summits per surface, and two draws of each surface: the spread between them is the
+#: sample's share of each model's error.
+MAP_SUMMITS, MAP_SEEDS = 16, (0, 1)
+#: The separation step and estimate the map's surfaces are solved at.
+ACCURACY = "draft"
 #: A value within this relative distance of a grid value is on it (a scene's μ from E*, R, Δγ
 #: and ε in SI carries rounding of ~1e-15; the map's own values are written to ~1e-16).
 ON_GRID = 1e-6
@@ -41,6 +49,49 @@ class MeasuredError:
     surfaces: int
     around: dict
     missing: tuple = ()
+
+
+def map_pixel(mu):
+    """The pixel (√(Rε)) of the map's surfaces at Tabor parameter `mu`: MAP_PIXEL, or finer
+    where the compliance number μ^1.5 a/π would pass the whole-surface solver's warning bound
+    (`whole.COMPLIANCE_MAX`, 0.1: 0.111 at μ = 2; its F̄max error there is a few 1e-3, beside
+    the map's 10 % verdicts)."""
+    from .whole import COMPLIANCE_MAX
+
+    return min(MAP_PIXEL, COMPLIANCE_MAX * np.pi / mu**1.5)
+
+
+def map_scene(mu, zeta, sigma_r_eta, seed):
+    """The map's GW surface made explicit (`compare.Scene`) at (μ, ζ, σRη), draw `seed`."""
+    from .compare import Scene
+
+    return Scene(mu=mu, zeta=zeta, sigma_r_eta=sigma_r_eta, summits=MAP_SUMMITS, seed=seed,
+                 pixel=map_pixel(mu))
+
+
+def measure_at(model, *, mu, zeta, sigma_r_eta, progress=None):
+    """`MeasuredError` of `model` solved at (μ, ζ, σRη) itself, as the map is made: its draws
+    (MAP_SEEDS) of GW's surface made explicit, compared (`compare.compare`, at ACCURACY) with
+    the table's law (no solve); for a point the map does not hold. InputError where the
+    surface cannot be made (more pixels than `compare.Scene` takes). `progress(fraction)`
+    after each draw."""
+    from .compare import compare, settled
+    from .interacting import AsperityLaw
+
+    scenes = [map_scene(mu, zeta, sigma_r_eta, seed) for seed in MAP_SEEDS]
+    for scene in scenes:
+        scene.surface()  # its size checked before any is solved
+    law, errors, estimates = AsperityLaw.tabulated(mu), [], []
+    for k, scene in enumerate(scenes):
+        found = compare(scene, accuracy=ACCURACY, law=law)
+        curve = found.models[model]
+        errors.append(found.errors[model] if settled(curve.stopped, curve.approach) else None)
+        estimates.append(found.estimate / found.models["whole"].f_max)
+        if progress:
+            progress((k + 1) / len(scenes))
+    size = None if any(e is None for e in errors) else float(max(abs(e) for e in errors))
+    return MeasuredError(size, float(max(estimates)), len(scenes),
+                         {"mu": [mu], "zeta": [zeta], "sigma_r_eta": [sigma_r_eta]})
 
 
 def map_record(records, provenance):
