@@ -21,8 +21,10 @@ holder, the cantilever's far end z̄ under a spring):
 
 For a rough surface's F̄max (GW), the laws are judged against the table and the ground between
 summits counted once in closed form; what GW leaves out beyond those, the summits' elastic
-interaction, is read off the measured map the package ships (`gw.explicit.measured_map`), and
-is unbounded outside it. On a height map the interacting asperities on its own summits are a
+interaction, is read off the measured map the package ships (`gw.explicit.measured_map`) at
+the summits' own ζ and σRη (ω times the surface's: the map's caps have ω = 1); outside it, it
+is unbounded, or with `--run` on a surface given by σ, R, η measured at the scene as the map
+is made. On a height map the interacting asperities on its own summits are a
 model too, their error (the far field's) read off the same map; the spread of the map's
 summit radii, which the map's caps of one R do not have, is computed for the map
 (`gw.explicit.radii`) and counted against every model but the whole surface; `run` answers by
@@ -369,7 +371,9 @@ def _advise_surface(scene, measure=False, say=None):
     """F̄max of a GW surface: each law against the table of solved laws, the ground between
     summits counted once in closed form (`gw.shared_ground`); what GW leaves out beyond that
     (the summits' elastic interaction, the ground lifted between them) read off the measured
-    map (`_read_off_map`), unbounded outside it. On a height map of at most MAX_SUMMITS
+    map (`_read_off_map`) at the summits' ζ and σRη (ω times the surface's, as GW's integral
+    takes them), unbounded outside it unless `measure` (`_measured_here`). On a height map of
+    at most MAX_SUMMITS
     summits, the interacting asperities on them too, their error read off the same map (its
     caps were of one R): the spread of the map's summit radii is computed for the map
     (`_radii_effect`) and counted against both."""
@@ -384,15 +388,16 @@ def _advise_surface(scene, measure=False, say=None):
     rough = rough_surface(surface, s)
     table = shipped_table()
     lo, hi = table.mu_range
-    zeta = surface["sigma"] / s.eps
-    effects = [_read_off_map(INTERACTION, scene.mu, zeta, sigma_r_eta)]
+    # the map's surfaces are caps of ω = 1: the point is the summits' (σ_s = ωσ), not σ's
+    summits = (scene.mu, rough.omega * rough.zeta, rough.omega * sigma_r_eta)
+    effects = [_read_off_map(INTERACTION, *summits)]
     if effects[0].size is None and "topography" not in surface:
-        effects[0] = (_measured_here(effects[0], scene.mu, zeta, sigma_r_eta, say) if measure
+        effects[0] = (_measured_here(effects[0], *summits, say) if measure
                       else replace(effects[0], note=f"{effects[0].note}; python -m advisor "
                                    "--run measures it at the scene"))
     interacting = "topography" in surface and surface["summits"] <= MAX_SUMMITS
     if interacting:
-        effects.append(_read_off_map(FAR_FIELD, scene.mu, zeta, sigma_r_eta))
+        effects.append(_read_off_map(FAR_FIELD, *summits))
     cost = {}
 
     def timed(name, law, **options):  # F̄max, its wall time kept as the model's cost
@@ -518,7 +523,8 @@ def _read_off_map(name, mu, zeta, sigma_r_eta):
         box = "no map is shipped" if shipped is None else "outside the measured map's " + (
             ", ".join(f"{k} {min(v):g}-{max(v):g}" for k, v in shipped["axes"].items()))
         return Effect(name, None, None, "not measured for this scene",
-                      f"mu = {mu:.3g}, zeta = {zeta:.3g}, sigma R eta = {sigma_r_eta:.3g} is "
+                      f"mu = {mu:.3g}, the summits' zeta = {zeta:.3g} and sigma R eta = "
+                      f"{sigma_r_eta:.3g} are "
                       f"{box} (docs/rough_explicit.md); python -m gw explicit answers for a "
                       "height map")
     around = "; ".join(f"{k} " + " and ".join(f"{v:g}" for v in found.around[k]) for k in AXES)
@@ -532,17 +538,20 @@ def _measured_here(unbounded, mu, zeta, sigma_r_eta, say=None):
     """The effect `unbounded` (one of MAP_MODELS, outside the map) measured at the scene's own
     point as the map is made (`gw.explicit.measured_map.measure_at`); as it was, its note
     saying why, where that surface cannot be made or the model has no answer on it."""
-    from gw.explicit.measured_map import MAP_SEEDS, MAP_SUMMITS, measure_at
+    from gw.explicit.measured_map import MAP_SEEDS, MAP_SUMMITS, measurable, measure_at
 
     model, what = MAP_MODELS[unbounded.name]
-    if say:
-        say(f"measuring {unbounded.name} at the scene itself (mu = {mu:.3g}, zeta = {zeta:.3g}, "
-            f"sigma R eta = {sigma_r_eta:.3g}, outside the measured map): {len(MAP_SEEDS)} GW "
-            f"surfaces made explicit, {MAP_SUMMITS} caps each, solved whole ...")
     try:
-        found = measure_at(model, mu=mu, zeta=zeta, sigma_r_eta=sigma_r_eta)
+        side = measurable(mu, zeta, sigma_r_eta)
     except InputError as exc:
-        return replace(unbounded, note=f"{unbounded.note}; not measurable here either: {exc}")
+        return replace(unbounded, note=f"{unbounded.note}; not measured at the scene either: "
+                       f"{exc}")
+    if say:
+        say(f"measuring {unbounded.name} at the scene itself (mu = {mu:.3g}, the summits' zeta "
+            f"= {zeta:.3g} and sigma R eta = {sigma_r_eta:.3g}, outside the measured map): "
+            f"{len(MAP_SEEDS)} GW surfaces made explicit, {MAP_SUMMITS} caps on {side} x {side} "
+            "pixels each, solved whole (seconds below mu = 1, up to ten minutes at mu = 2) ...")
+    found = measure_at(model, mu=mu, zeta=zeta, sigma_r_eta=sigma_r_eta)
     how = (f"computed for this scene: the largest error of {what} against the surface solved "
            f"whole, on {found.surfaces} GW surfaces made explicit at its mu, zeta, sigma R eta "
            f"({MAP_SUMMITS} caps each, as the measured map's)")
@@ -582,18 +591,30 @@ def check_runnable(advice):
     if advice.choice not in SURFACE_MODELS:
         return
     if "topography" not in scene.surface:
-        why = next(e for e in advice.effects if e.name == INTERACTION)
-        said = (f"{INTERACTION}: {why.size:.3g} ({why.how})" if why.size is not None
-                else f"{INTERACTION}: not bounded ({why.note})")
         raise InputError(f"--run: the model chosen, {advice.choice}, needs the surface's height "
                          "map: give [surface] topography, or run python -m gw explicit "
-                         f"--topography MAP ...; {said}")
+                         f"--topography MAP ...; {_why_not_gw(advice)}")
     from gw.explicit.whole import check_map
 
     try:
         check_map(scene.topography(), _adhesion(scene))
     except InputError as exc:
         raise InputError(f"surface.topography: {exc}") from None
+
+
+def _why_not_gw(advice):
+    """Why no GW model was chosen, in a line: the closest one's summed error against the
+    tolerance, with its largest effect, or the effects not bounded."""
+    bounded = [m for m in advice.models if m.name.startswith("GW") and m.error is not None]
+    if not bounded:
+        return "not bounded: " + "; ".join(f"{e.name} ({e.note})" for e in advice.effects
+                                           if e.size is None)
+    best = min(bounded, key=lambda m: m.error)
+    largest = max((e for e in advice.effects if e.name in best.leaves_out),
+                  key=_with_uncertainty)
+    return (f"the closest GW model, {best.name}, leaves out effects that sum to "
+            f"{best.error:.3g} > the tolerance {advice.scene.tolerance:g}, the largest "
+            f"{largest.name}: {largest.size:.3g} ({largest.how})")
 
 
 #: The models run on a scene's height map, by the name `gw.explicit.answer` knows them by.

@@ -30,6 +30,9 @@ MAP_PIXEL = 0.2
 MAP_SUMMITS, MAP_SEEDS = 16, (0, 1)
 #: The separation step and estimate the map's surfaces are solved at.
 ACCURACY = "draft"
+#: Most pixels along a side of a surface `measure_at` solves: the map's largest, μ = 2,
+#: ζ = 12, σRη = 0.02 (882²), took 10 min per draw on the 2-core development machine.
+MEASURE_MAX_SIDE = 1024
 #: A value within this relative distance of a grid value is on it (a scene's μ from E*, R, Δγ
 #: and ε in SI carries rounding of ~1e-15; the map's own values are written to ~1e-16).
 ON_GRID = 1e-6
@@ -40,9 +43,9 @@ class MeasuredError:
     """A model's F̄max error read off the map around a point: `size` (the largest |error| over
     the `surfaces` solved at the grid points that bracket it; None where the model has no
     answer on one of them, or where one of them, or one of its draws, was not solved:
-    `missing`, as (μ, ζ, σRη, seed)), `uncertainty` (the largest of their whole surfaces'
-    relative estimates; NaN where none was solved), `around` (each axis's bracketing
-    values)."""
+    `missing`, as (μ, ζ, σRη, seed)), `uncertainty` (the largest over those grid points of
+    their whole surfaces' relative estimate plus the spread of the model's error between
+    their draws; NaN where none was solved), `around` (each axis's bracketing values)."""
 
     size: float | None
     uncertainty: float
@@ -69,28 +72,43 @@ def map_scene(mu, zeta, sigma_r_eta, seed):
                  pixel=map_pixel(mu))
 
 
+def measurable(mu, zeta, sigma_r_eta):
+    """Pixels along a side of the map's surface at (μ, ζ, σRη) (MAP_SUMMITS caps at density
+    η = σRη/(σR) on a square √(N/η) = √(N ζ/σRη) √(Rε) wide, at `map_pixel(μ)`); InputError
+    where it is outside `compare.Scene`'s ranges or more than MEASURE_MAX_SIDE pixels wide."""
+    from .compare import Scene
+
+    Scene(mu=mu, zeta=zeta, sigma_r_eta=sigma_r_eta)  # its ranges
+    side = int(np.ceil(np.sqrt(MAP_SUMMITS * zeta / sigma_r_eta) / map_pixel(mu)))
+    if side > MEASURE_MAX_SIDE:
+        raise InputError(f"its GW surfaces made explicit would be {side} x {side} pixels, more "
+                         f"than {MEASURE_MAX_SIDE} (hours each)")
+    return side
+
+
 def measure_at(model, *, mu, zeta, sigma_r_eta, progress=None):
     """`MeasuredError` of `model` solved at (μ, ζ, σRη) itself, as the map is made: its draws
     (MAP_SEEDS) of GW's surface made explicit, compared (`compare.compare`, at ACCURACY) with
-    the table's law (no solve); for a point the map does not hold. InputError where the
-    surface cannot be made (more pixels than `compare.Scene` takes). `progress(fraction)`
-    after each draw."""
+    the table's law (no solve), the uncertainty as `measured_error`'s; for a point the map
+    does not hold. InputError before anything is solved where it is not `measurable`.
+    `progress(fraction)` after each draw."""
     from .compare import compare, settled
     from .interacting import AsperityLaw
 
+    measurable(mu, zeta, sigma_r_eta)
     scenes = [map_scene(mu, zeta, sigma_r_eta, seed) for seed in MAP_SEEDS]
-    for scene in scenes:
-        scene.surface()  # its size checked before any is solved
-    law, errors, estimates = AsperityLaw.tabulated(mu), [], []
+    law, draws = AsperityLaw.tabulated(mu), []
     for k, scene in enumerate(scenes):
         found = compare(scene, accuracy=ACCURACY, law=law)
         curve = found.models[model]
-        errors.append(found.errors[model] if settled(curve.stopped, curve.approach) else None)
-        estimates.append(found.estimate / found.models["whole"].f_max)
+        draws.append({"estimate": found.estimate / found.models["whole"].f_max,
+                      "errors": {model: found.errors[model]
+                                 if settled(curve.stopped, curve.approach) else None}})
         if progress:
             progress((k + 1) / len(scenes))
+    errors = [d["errors"][model] for d in draws]
     size = None if any(e is None for e in errors) else float(max(abs(e) for e in errors))
-    return MeasuredError(size, float(max(estimates)), len(scenes),
+    return MeasuredError(size, _uncertainty(model, draws), len(scenes),
                          {"mu": [mu], "zeta": [zeta], "sigma_r_eta": [sigma_r_eta]})
 
 
@@ -163,5 +181,17 @@ def measured_error(model, *, mu, zeta, sigma_r_eta, record=None):
     errors = [s["errors"][model] for s in near]
     size = (None if missing or any(e is None for e in errors)
             else float(max(abs(e) for e in errors)))
-    uncertainty = float(max((s["estimate"] for s in near), default=np.nan))
+    points = {}  # the draws of each grid point: their spread is the sample's share
+    for s in near:
+        points.setdefault(tuple(s[k] for k in AXES), []).append(s)
+    uncertainty = max((_uncertainty(model, draws) for draws in points.values()), default=np.nan)
     return MeasuredError(size, uncertainty, len(near), around, missing)
+
+
+def _uncertainty(model, draws):
+    """The uncertainty of `model`'s error read off the `draws` of one point (dicts with
+    'estimate' and 'errors'): the largest whole surface's relative estimate, plus the spread
+    of the model's errors between the draws (the sample's share; 0 where one has none)."""
+    errors = [d["errors"][model] for d in draws if d["errors"][model] is not None]
+    spread = max(errors) - min(errors) if errors else 0.0
+    return float(max(d["estimate"] for d in draws) + spread)
