@@ -30,6 +30,9 @@ ERROR_FILE = Path(__file__).with_name("data") / "corrected_law_error.json"
 #: The fit's sample of the table (every FIT_STEP-th node) and the weight of P̄(δ̄o) beside F̄max
 #: (methods.md §14). Not pinned by a test; docs/corrected_law.md has the errors.
 FIT_STEP, CURVE_WEIGHT = 3, 0.3
+#: The weight of log(δ̄J/δ̄o of the solved jump-in) at the fit's nodes that jump: without it
+#: the fit left δ̄J 21 % out at μ = 50, where F̄max barely depends on it (methods.md §14).
+JUMP_WEIGHT = 1.0
 #: Points of the solved approach each fit curve is compared at, from its deepest δ̄o to three
 #: times its jump (or δ̄o*), leaving out 0.05 (1 + √μ) on either side of the jump.
 CURVE_POINTS = 40
@@ -75,7 +78,8 @@ def measure(constants=CORRECTED_LAWS, table=None, progress=None):
 
 
 def _fit_samples(table):
-    """(μ, solved F̄max per ζ, δ̄o samples, solved P̄ there) of the fit's nodes."""
+    """(μ, solved F̄max per ζ, δ̄o samples, solved P̄ there, δ̄o of the jump-in or None) of the
+    fit's nodes."""
     samples = []
     for k in range(0, len(table.mus), FIT_STEP):
         e, law = table.entries[k], table.law(table.mus[k])
@@ -83,22 +87,25 @@ def _fit_samples(table):
         d = np.linspace(min(e.approach.delta), 3.0 * top, CURVE_POINTS)
         if e.jump_in is not None:
             d = d[np.abs(d - e.jump_in) > 0.05 * (1.0 + np.sqrt(e.mu))]
-        samples.append((e.mu, _f_max(law), d, law.force(d)))
+        samples.append((e.mu, _f_max(law), d, law.force(d), e.jump_in))
     return samples
 
 
 def _residuals(table, samples, c_off, progress=None):
-    """The fit's residuals as a function of (a, b, c, q): log F̄max ratios over ZETAS and
-    CURVE_WEIGHT (P̄ − P̄solved)/√n over each sampled curve."""
+    """The fit's residuals as a function of (a, b, c, q): log F̄max ratios over ZETAS,
+    CURVE_WEIGHT (P̄ − P̄solved)/√n over each sampled curve, and JUMP_WEIGHT log(δ̄J/jump-in)
+    where the solved curve jumps."""
     calls = [0]
 
     def residuals(x):
         constants = CorrectedLaws(*x, c_off=c_off)
         out = []
-        for mu, f_max, d, p in samples:
+        for mu, f_max, d, p, jump in samples:
             law = CorrectedLaw(mu, constants)
             out += [np.log(_f_max(law) / f_max),
                     CURVE_WEIGHT * (law.force(d) - p) / np.sqrt(len(d))]
+            if jump is not None:
+                out.append([JUMP_WEIGHT * np.log(law.breakpoints[0] / jump)])
         calls[0] += 1
         if progress:
             progress(min(calls[0] / 40.0, 0.99))

@@ -182,7 +182,7 @@ def test_the_sampled_curve_is_the_parametric_form(mu):
 
     def parametric(s):
         p = p_off + 2.0 * s**3 / (3.0 * np.pi) - np.sqrt(2.0 / np.pi) * s**1.5 + 0.75
-        return p, (float(C.minimum_separation(mu)) + wall_gap(p) - 1.0
+        return p, (float(C.minimum_separation(mu)) + wall_gap(min(p, 0.0)) - 1.0
                    - mu * (s * s - np.sqrt(2.0 * np.pi * s) - U_MIN))
 
     checked = 0
@@ -208,7 +208,7 @@ def _solved_events(mu):
 
 def test_the_corrected_laws_events_against_the_solved_curves():
     """At 40 μ over the table's range, against its solved approach paths: the corrected law's
-    P̄max within 0.5 %, δ̄oc 11.5 %, first contact (its jump) within 8 % of the solved jump-in;
+    P̄max within 0.5 %, δ̄oc 6.7 %, first contact (its jump) within 7.4 % of the solved jump-in;
     the paper's laws 5.5 %, 48 %, 6.4 % (what `fem_asperity laws --form corrected` states)."""
     from fem_asperity.closed_forms.laws import PAPER_LAWS
 
@@ -222,7 +222,7 @@ def test_the_corrected_laws_events_against_the_solved_curves():
             worst[form] = np.maximum(worst[form], off)
             if form == "corrected":
                 assert e["a_c"] is None and e["x_oc"] is None  # not given: other quantities
-    assert np.all(worst["corrected"] <= [0.005, 0.115, 0.08]), worst
+    assert np.all(worst["corrected"] <= [0.005, 0.067, 0.074]), worst
     assert list(worst["paper"]) == pytest.approx([0.055, 0.48, 0.064], abs=0.005)
 
 
