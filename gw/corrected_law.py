@@ -202,10 +202,11 @@ def report(rows, constants, bounds=None, recorded=None):
         "- δ̄o > δ̄J(μ): Bradley, P̄ = (δ̄o⁻⁸ − 4δ̄o⁻²)/3.",
         "- below: parametric in s ≥ s_t = (√(2π)/4)^(2/3),",
         "  P̄(s) = P̄off(μ) + 2s³/(3π) − √(2/π) s^(3/2) + 3/4,",
-        "  δ̄o(s) = δ̄m(μ) + [x̄_B(P̄) − 1] − μ [s² − √(2πs) − u_m],",
+        "  δ̄o(s) = δ̄m(μ) + [x̄_B(min(P̄, 0)) − 1] − μ [s² − √(2πs) − u_m],",
         "  Ā(s) = π μ [s² − √(π/2) √s], 0 below s³ = π/2 (the JKR contact's compressive zone),",
         "  with P̄off = −(1/8)[7 + (1 − c_off μ^1.5)/(1 + c_off μ^1.5)] (Wu, the paper's eq. 2), "
-        "x̄_B(P̄) ≤ 1 solving x̄⁻⁸ − 4x̄⁻² = 3P̄, u_m = −0.77342.",
+        "x̄_B(P̄) ≤ 1 solving x̄⁻⁸ − 4x̄⁻² = 3P̄ (Bradley's wall, on the tensile side only: "
+        "under compression it stays at x̄_B(0) = 4^(−1/6)), u_m = −0.77342.",
         "- δ̄J = 1 + a μ^b, δ̄m = δ̄J + 0.77342 μ − c μ^q; the approach leaves Bradley's curve "
         "at δ̄J, or at the top of the s-branch where that is deeper.",
         "",
