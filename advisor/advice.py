@@ -487,7 +487,8 @@ def _radii_effect(scene):
                        radius=scene.scales.R, mu=scene.mu)
     how = (f"computed for this map: its {spread.summits} summits summed on the table's laws, "
            f"each at its own radius ({spread.radii[0]:.3g}-{spread.radii[1]:.3g} m, mu "
-           f"{spread.mu[0]:.3g}-{spread.mu[1]:.3g}) and all at the mean")
+           f"{spread.mu[0]:.3g}-{spread.mu[1]:.3g}) and all at the mean (for the interacting "
+           "asperities, whose ground counted once sees the summits' shapes, an upper estimate)")
     return Effect(RADII, spread.size, spread.uncertainty, how, spread.note)
 
 
