@@ -551,7 +551,7 @@ def _measured_here(unbounded, mu, zeta, sigma_r_eta, say=None):
         say(f"measuring {unbounded.name} at the scene itself (mu = {mu:.3g}, the summits' zeta "
             f"= {zeta:.3g} and sigma R eta = {sigma_r_eta:.3g}, outside the measured map): "
             f"{len(MAP_SEEDS)} GW surfaces made explicit, {MAP_SUMMITS} caps on {side} x {side} "
-            "pixels each, solved whole (seconds below mu = 1, up to ten minutes at mu = 2) ...")
+            "pixels each, solved whole (the map's own times: docs/rough_explicit_report.md) ...")
     found = measure_at(model, mu=mu, zeta=zeta, sigma_r_eta=sigma_r_eta)
     how = (f"computed for this scene: the largest error of {what} against the surface solved "
            f"whole, on {found.surfaces} GW surfaces made explicit at its mu, zeta, sigma R eta "

@@ -30,8 +30,8 @@ MAP_PIXEL = 0.2
 MAP_SUMMITS, MAP_SEEDS = 16, (0, 1)
 #: The separation step and estimate the map's surfaces are solved at.
 ACCURACY = "draft"
-#: Most pixels along a side of a surface `measure_at` solves: the map's largest, μ = 2,
-#: ζ = 12, σRη = 0.02 (882²), took 10 min per draw on the 2-core development machine.
+#: Most pixels along a side of a surface `measure_at` solves: a little above the map's largest
+#: (μ = 2, ζ = 12, σRη = 0.02: 882²; its time in docs/rough_explicit_report.md).
 MEASURE_MAX_SIDE = 1024
 #: A value within this relative distance of a grid value is on it (a scene's μ from E*, R, Δγ
 #: and ε in SI carries rounding of ~1e-15; the map's own values are written to ~1e-16).
