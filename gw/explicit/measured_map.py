@@ -82,7 +82,7 @@ def measurable(mu, zeta, sigma_r_eta):
     side = int(np.ceil(np.sqrt(MAP_SUMMITS * zeta / sigma_r_eta) / map_pixel(mu)))
     if side > MEASURE_MAX_SIDE:
         raise InputError(f"its GW surfaces made explicit would be {side} x {side} pixels, more "
-                         f"than {MEASURE_MAX_SIDE} (hours each)")
+                         f"than the {MEASURE_MAX_SIDE} measured here (the map's largest: 882)")
     return side
 
 
