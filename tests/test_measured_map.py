@@ -6,7 +6,15 @@ import pytest
 
 from fem_asperity.plumbing.errors import InputError
 from gw.explicit import Scene, compare
-from gw.explicit.measured_map import ON_GRID, map_record, measured_error, shipped_map
+from gw.explicit.measured_map import (
+    MEASURE_MAX_SIDE,
+    ON_GRID,
+    map_record,
+    measurable,
+    measure_at,
+    measured_error,
+    shipped_map,
+)
 
 
 def _surface(mu, zeta, sre, seed, cells, interacting=0.0):
@@ -119,3 +127,14 @@ def test_the_shipped_map_is_what_the_solver_gives_now():
         if error is not None:
             assert found.errors[name] == pytest.approx(error, rel=1e-4, abs=1e-6), name
     assert np.isfinite(surface["estimate"])
+
+
+def test_a_point_too_large_or_out_of_range_is_refused_before_anything_is_solved():
+    """The map's surface at μ = 2, ζ = 12, σRη = 0.02 is 883 pixels wide and measurable; at
+    σRη = 0.005 it would be 1765, beyond MEASURE_MAX_SIDE; μ = 20 is beyond the explicit
+    surfaces' range: InputError at once, naming why."""
+    assert measurable(2.0, 12.0, 0.02) == 883 <= MEASURE_MAX_SIDE
+    with pytest.raises(InputError, match="would be 1765 x 1765 pixels, more than the 1024"):
+        measure_at("gw_cells", mu=2.0, zeta=12.0, sigma_r_eta=0.005)
+    with pytest.raises(InputError, match="mu"):
+        measure_at("gw_cells", mu=20.0, zeta=2.0, sigma_r_eta=0.05)

@@ -31,7 +31,7 @@ MAP_SUMMITS, MAP_SEEDS = 16, (0, 1)
 #: The separation step and estimate the map's surfaces are solved at.
 ACCURACY = "draft"
 #: Most pixels along a side of a surface `measure_at` solves: a little above the map's largest
-#: (μ = 2, ζ = 12, σRη = 0.02: 882²; its time in docs/rough_explicit_report.md).
+#: (μ = 2, ζ = 12, σRη = 0.02: 883²; its time in docs/rough_explicit_report.md).
 MEASURE_MAX_SIDE = 1024
 #: A value within this relative distance of a grid value is on it (a scene's μ from E*, R, Δγ
 #: and ε in SI carries rounding of ~1e-15; the map's own values are written to ~1e-16).
@@ -82,7 +82,7 @@ def measurable(mu, zeta, sigma_r_eta):
     side = int(np.ceil(np.sqrt(MAP_SUMMITS * zeta / sigma_r_eta) / map_pixel(mu)))
     if side > MEASURE_MAX_SIDE:
         raise InputError(f"its GW surfaces made explicit would be {side} x {side} pixels, more "
-                         f"than the {MEASURE_MAX_SIDE} measured here (the map's largest: 882)")
+                         f"than the {MEASURE_MAX_SIDE} measured here")
     return side
 
 
