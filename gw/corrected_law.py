@@ -105,7 +105,7 @@ def _residuals(table, samples, c_off, progress=None):
             out += [np.log(_f_max(law) / f_max),
                     CURVE_WEIGHT * (law.force(d) - p) / np.sqrt(len(d))]
             if jump is not None:
-                out.append([JUMP_WEIGHT * np.log(law.breakpoints[0] / jump)])
+                out.append([JUMP_WEIGHT * np.log(law.delta_jump / jump)])
         calls[0] += 1
         if progress:
             progress(min(calls[0] / 40.0, 0.99))

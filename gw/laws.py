@@ -67,7 +67,8 @@ class CorrectedLaw:
     def __init__(self, mu, constants=CORRECTED_LAWS, *, name="corrected"):
         self.mu, self.constants, self.name = positive("mu", mu), constants, name
         self._at_mu = constants.at(mu)
-        self.breakpoints = (self._at_mu.delta_jump,)
+        self.delta_jump = self._at_mu.delta_jump
+        self.breakpoints = tuple(sorted({self._at_mu.delta_zero, self.delta_jump}))
 
     def force(self, delta):
         """P̄(δ̄o) [2πRΔγ] on approach at δ̄o `delta` [ε] (array or scalar)."""

@@ -313,6 +313,16 @@ def _summits_point(scene):
             rough.omega * surface["sigma"] * s.R * surface["density"])
 
 
+def _run_writes(scene_file, out, model):
+    """`python -m advisor FILE --run --out OUT` writes the GW `model`'s F̄max, in Pa."""
+    from advisor.__main__ import main
+
+    assert main([str(scene_file), "--run", "--out", str(out)]) == 0
+    result = json.loads((out / "advice.json").read_text())["result"]
+    assert result["model"] == model.name and result["unit"] == "Pa"
+    assert result["value"] == pytest.approx(model.value)
+
+
 def test_inside_the_measured_map_gw_is_bounded_and_chosen(tmp_path):
     """A GW surface at μ = 1 whose summits' ζ = 2, σRη = 0.05 (σ_s = ωσ, as GW's integral
     takes them) are a point of the shipped map: the summits' interaction is read off the map
@@ -320,7 +330,6 @@ def test_inside_the_measured_map_gw_is_bounded_and_chosen(tmp_path):
     counted once against the two draws solved whole), so GW with the table and the ground
     counted once is bounded; within 10 % it is chosen, and --run writes its F̄max in Pa. A
     point between grid points takes the largest error around it."""
-    from advisor.__main__ import main
     from advisor.advice import INTERACTION
     from gw.explicit.measured_map import measured_error
 
@@ -340,11 +349,7 @@ def test_inside_the_measured_map_gw_is_bounded_and_chosen(tmp_path):
     once = next(m for m in advice.models if m.name == "GW, the table, the ground counted once")
     assert once.error is not None and once.error <= scene.tolerance
     assert advice.choice == once.name  # the cheaper GW models count the ground too often
-    out = tmp_path / "o"
-    assert main([str(scene_file), "--run", "--out", str(out)]) == 0
-    result = json.loads((out / "advice.json").read_text())["result"]
-    assert result["model"] == once.name and result["unit"] == "Pa"
-    assert result["value"] == pytest.approx(once.value)
+    _run_writes(scene_file, tmp_path / "o", once)
 
 
 def test_a_corner_of_the_map_not_solved_leaves_gw_unbounded_and_named(monkeypatch):
@@ -377,7 +382,6 @@ def test_beyond_the_map_run_measures_gw_at_the_scene_and_answers(tmp_path):
     --run measures it; with --run it is measured at the summits' own point as the map is made
     (two GW surfaces made explicit, solved whole at draft, the table's law); bounded so, a GW
     model is chosen and its F̄max written in Pa."""
-    from advisor.__main__ import main
     from advisor.advice import INTERACTION
     from gw.explicit.measured_map import measure_at
 
@@ -399,11 +403,7 @@ def test_beyond_the_map_run_measures_gw_at_the_scene_and_answers(tmp_path):
     chosen = next(m for m in advice.models if m.name == advice.choice)
     assert chosen.name.startswith("GW") and chosen.error <= scene.tolerance
     assert INTERACTION in chosen.leaves_out
-    out = tmp_path / "o"
-    assert main([str(scene_file), "--run", "--out", str(out)]) == 0
-    result = json.loads((out / "advice.json").read_text())["result"]
-    assert result["model"] == chosen.name and result["unit"] == "Pa"
-    assert result["value"] == pytest.approx(chosen.value)
+    _run_writes(scene_file, tmp_path / "o", chosen)
 
 
 def test_where_gw_measured_at_the_scene_misses_run_says_so_and_writes_nothing(tmp_path):

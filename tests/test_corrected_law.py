@@ -40,6 +40,20 @@ def test_the_corrected_law_tends_to_bradleys_curve_as_mu_vanishes():
     assert departures[2] < 1e-2
 
 
+def test_under_compression_the_wall_stops_and_the_elastic_contact_carries_the_load():
+    """At μ = 0.01, deep in contact (δ̄o = 0 and −0.5), the form is within 12 % of the solved law
+    (the table: P̄ = 136 and 294), where Bradley's wall in series with the contact made it 38 %
+    too compliant (84 at δ̄o = 0); just inside the wall it is too stiff (+51 % at δ̄o = 0.6: the
+    LJ wall's own softness is left out there). As μ → 0 the compressive side is a wall at
+    Bradley's zero-force gap 4^(−1/6), where the law breaks its slope (a breakpoint)."""
+    solved, law = shipped_table().law(0.01), CorrectedLaw(0.01)
+    for delta in (0.0, -0.5):
+        assert law.force(delta) == pytest.approx(solved.force(delta), rel=0.12)
+    rigid = CorrectedLaw(1e-8)
+    assert rigid.breakpoints[0] == pytest.approx(4.0 ** (-1.0 / 6.0), abs=1e-3)
+    assert rigid.force(4.0 ** (-1.0 / 6.0) - 1e-3) > 1e3
+
+
 def test_the_corrected_law_lands_on_jkr_as_mu_grows():
     """μ → ∞: the approach jumps onto the JKR curve near where its δ-term is zero (s³ = 2π),
     landing at −2/3 (JKR under displacement control), and follows JKR deeper: at the contact
@@ -51,7 +65,7 @@ def test_the_corrected_law_lands_on_jkr_as_mu_grows():
 
     mu = 1e5
     law = CorrectedLaw(mu)
-    jump = law.breakpoints[0]
+    jump = law.delta_jump
     landing = law.force(jump - 1e-9 * mu)
     assert landing == pytest.approx(-2.0 / 3.0, abs=0.01)
     deep = jump - mu * np.array([1.0, 5.0, 50.0])
@@ -173,7 +187,7 @@ def test_the_shipped_errors_belong_to_the_shipped_constants():
 def test_the_sampled_curve_is_the_parametric_form(mu):
     """P̄(δ̄o) read off the samples equals the parametric form solved for s by bisection, to
     1e-4 max(1, |P̄|): reading P̄ ∝ (−δ̄o)^(3/2) linearly between samples whose δ̄o are
-    2 ln(10)/400 apart (relative) costs (3/2)(1/2)/8 × that² = 1.3e-5 of P̄; the steeper wall
+    2 ln(10)/400 apart (relative) costs (3/2)(1/2)/8 × that² = 1.3e-5 of P̄; the steep branch
     at small μ (6e-5 at μ = 0.01, P̄ = 1.2) and P̄ near 0 take the absolute part."""
     from fem_asperity.closed_forms.corrected import CORRECTED_LAWS as C
 

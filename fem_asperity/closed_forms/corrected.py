@@ -18,9 +18,10 @@ Here the same pieces are joined as the solved curves are (units: δ̄o in ε, P�
   its zero-force gap x̄_B(0) = 4^(−1/6): the elastic contact spreads the load, and the rigid
   sphere's wall, which takes it all on its apex, made the repulsive branch too compliant
   (P̄ = 84 against the solved 136 at δ̄o = 0, μ = 0.01, where the F̄max error at ζ = 1 was
-  9.8 %, now 3.7 %). A wall whose load is spread over the contact, P̄/(1 + μs²/A₀), fitted
-  A₀ = 0.03 (a contact a fifth of √(εR) wide) in a scratch run: one more constant for a
-  largest error of 8.6 % against 8.1 % without it (both fitted without JUMP_WEIGHT).
+  9.8 %; now 152, 11 % too stiff, and 3.7 %). A wall whose load is spread over the contact,
+  P̄/(1 + μs²/A₀), fitted A₀ = 0.03 (a contact a fifth of √(εR) wide) in a scratch run: one
+  more constant for a largest error of 8.6 % against 8.1 % without it (both fitted without
+  JUMP_WEIGHT).
   s_m = (3√(2π)/4)^(2/3) where the JKR force is
   least, u_m = s_m² − √(2π s_m) = −0.7734; Ā the compressive zone of that JKR contact, where
   Hertz's pressure beats the punch's tension (`reference.jkr_compressive_radius_at`), as the
@@ -80,10 +81,10 @@ class CorrectedLaws:
     `python -m gw corrected-law --fit`, their 95 % intervals in docs/corrected_law.md): a, b
     (δ̄J = 1 + a μ^b), c, q (δ̄m = δ̄J + |u_m| μ − c μ^q), c_off (Wu's eq. 2, the paper's)."""
 
-    a: float = 1.822457005724331
-    b: float = 0.5187282682891075
-    c: float = 1.7274631605710662
-    q: float = 0.5180503188753314
+    a: float = 1.8224563916746719
+    b: float = 0.5187303817019981
+    c: float = 1.7274642327955356
+    q: float = 0.5180486076326523
     c_off: float = 1.98
 
     def jump_separation(self, mu):
@@ -109,7 +110,8 @@ class CorrectedLaws:
 class CorrectedLawAtMu:
     """`CorrectedLaws` at one μ: force(δ̄o) [2πRΔγ] and area(δ̄o) [εR] for arrays of δ̄o [ε];
     `delta_jump` [ε], the δ̄o of the jump (δ̄J, or the top of the contact branch where that is
-    deeper), and `p_off`, Wu's pull-off [2πRΔγ]."""
+    deeper), `delta_zero` [ε], where P̄ turns compressive and the wall stops (a kink), and
+    `p_off`, Wu's pull-off [2πRΔγ]."""
 
     def __init__(self, mu, constants):
         self.mu, self.constants = mu, constants
@@ -127,6 +129,10 @@ class CorrectedLawAtMu:
         self._delta, self._p, self._area = delta[:keep], p[:keep], area[:keep]
         self._deepest_s = float(s[0])
         self.delta_jump = min(float(constants.jump_separation(mu)), float(self._delta[-1]))
+        # where P̄ turns compressive the wall stops: a kink in the slope (a breakpoint); the
+        # branch's deep end is compressive (P̄ ~ s³) and its top tensile (P̄off + 1/3 at s_t)
+        n = int(np.argmin(self._p > 0.0))  # the first tensile sample
+        self.delta_zero = float(np.interp(0.0, self._p[[n, n - 1]], self._delta[[n, n - 1]]))
 
     def force(self, delta_o):
         """P̄(δ̄o) [2πRΔγ] on approach (< 0 tensile)."""

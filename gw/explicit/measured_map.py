@@ -45,13 +45,16 @@ class MeasuredError:
     answer on one of them, or where one of them, or one of its draws, was not solved:
     `missing`, as (μ, ζ, σRη, seed)), `uncertainty` (the largest over those grid points of
     their whole surfaces' relative estimate plus the spread of the model's error between
-    their draws; NaN where none was solved), `around` (each axis's bracketing values)."""
+    their draws; NaN where none was solved), `around` (each axis's bracketing values), and
+    `least`, the smallest |error| over the same surfaces (None with `size`): where even it is
+    beyond a bound, every surface around the point is."""
 
     size: float | None
     uncertainty: float
     surfaces: int
     around: dict
     missing: tuple = ()
+    least: float | None = None
 
 
 def map_pixel(mu):
@@ -109,7 +112,8 @@ def measure_at(model, *, mu, zeta, sigma_r_eta, progress=None):
     errors = [d["errors"][model] for d in draws]
     size = None if any(e is None for e in errors) else float(max(abs(e) for e in errors))
     return MeasuredError(size, _uncertainty(model, draws), len(scenes),
-                         {"mu": [mu], "zeta": [zeta], "sigma_r_eta": [sigma_r_eta]})
+                         {"mu": [mu], "zeta": [zeta], "sigma_r_eta": [sigma_r_eta]}, (),
+                         None if size is None else float(min(abs(e) for e in errors)))
 
 
 def map_record(records, provenance):
@@ -185,7 +189,8 @@ def measured_error(model, *, mu, zeta, sigma_r_eta, record=None):
     for s in near:
         points.setdefault(tuple(s[k] for k in AXES), []).append(s)
     uncertainty = max((_uncertainty(model, draws) for draws in points.values()), default=np.nan)
-    return MeasuredError(size, uncertainty, len(near), around, missing)
+    least = None if size is None else float(min(abs(e) for e in errors))
+    return MeasuredError(size, uncertainty, len(near), around, missing, least)
 
 
 def _uncertainty(model, draws):
