@@ -283,9 +283,9 @@ def section(summary):
               f"{100 * HOLDS:g} % (fails); ?: some (open, between grid points that disagree); "
               "no mark: none (holds).", "",
               _gw_itself_table(found), "",
-              f"At the {len(rows)} points inside the map, {len(rows) * len(found['sigma_r_eta'])} "
-              f"readings each: {said}. Where GW's sum fails, so do the paper's Figs. 9-13 "
-              "there, whichever law feeds them."]
+              f"At the {len(rows)} points inside the map "
+              f"({len(rows) * len(found['sigma_r_eta'])} readings): {said}. Where GW's sum "
+              "fails, so do the paper's Figs. 9-13 there, whichever law feeds them."]
     fit = summary["refit"]
     lines += ["", f"### The eight constants refitted from {fit['method'].upper()} curves", "",
               "Least squares in the paper's forms over μ = "
