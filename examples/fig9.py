@@ -80,6 +80,7 @@ for axis in (ax_f, ax_s, inset):
     axis.grid(alpha=0.3)
 ax_f.legend(fontsize=8, loc="lower left")
 ax_s.legend(fontsize=8)
+OUT.mkdir(parents=True, exist_ok=True)
 fig.savefig(OUT / "fig9.png", dpi=150, bbox_inches="tight")
 print(f"wrote {OUT / 'fig9.png'}")
 

@@ -154,6 +154,7 @@ print(f"\nsolved BEM law ({SOLVED_ACCURACY}): F̄max = {best_solved.f_max:.4g} "
 # %%
 # Output: the sweep as CSV.
 
+OUT.mkdir(parents=True, exist_ok=True)
 path = OUT / "mems_rough_surface.csv"
 with open(path, "w", newline="") as file:
     writer = csv.DictWriter(file, fieldnames=list(rows[0]), lineterminator="\n")
