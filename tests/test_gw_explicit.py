@@ -115,6 +115,33 @@ def test_a_missing_pixel_size_names_the_option(caps_map):
     assert run.returncode == 2 and "--pixel-size" in run.stderr
 
 
+def test_no_model_is_judged_against_a_whole_surface_less_sure_than_the_verdict(caps_map,
+                                                                              monkeypatch):
+    """A whole surface whose own estimate is beyond the 10 % a verdict needs (a coarse map: a
+    user's 64² map at 2 nm gave 59 %) names no model the surface needs, and says why; its
+    models' differences from it are still given. The same map with its real estimate is
+    judged."""
+    import dataclasses
+
+    import gw.explicit.answer as module
+
+    _, surface, _ = caps_map
+    real = module.solve_whole
+
+    def unsure(*args, **kwargs):
+        found = real(*args, **kwargs)
+        return dataclasses.replace(found, error_estimate={
+            **found.error_estimate, "force_max": 0.5 * found.force_max})
+
+    monkeypatch.setattr(module, "solve_whole", unsure)
+    found = answer(surface, Adhesion(E_STAR, DGAMMA, EPS), model="whole", accuracy="draft")
+    assert found.needs is None and set(found.relative_to_whole) == {"gw", "interacting", "whole"}
+    assert any("needs: not judged" in note and "50%" in note for note in found.notes)
+    monkeypatch.setattr(module, "solve_whole", real)
+    assert answer(surface, Adhesion(E_STAR, DGAMMA, EPS), model="whole",
+                  accuracy="draft").needs is not None
+
+
 def test_the_answer_is_the_same_in_python(caps_map):
     """The Python API gives the command line's numbers (GW at the summits' own σ_s)."""
     _, surface, caps = caps_map

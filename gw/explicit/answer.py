@@ -19,7 +19,7 @@ from fem_asperity.plumbing.errors import InputError
 
 from ..integrate import strength, totals
 from ..surface import RoughSurface
-from .compare import settled, within
+from .compare import HOLDS, settled, within
 from .interacting import AsperityLaw, Interacting, coupling
 from .radii import own_radii
 from .tails import SharedTails
@@ -54,10 +54,11 @@ class Answer:
     """The answer for one map: `models` (name → ModelAnswer), `whole` (the `WholeSurface`, or
     None), `relative_to_whole` (name → F_max/F_max(whole) − 1), `needs` (the cheapest model
     `compare.within` the whole surface, its estimate counted, on a `compare.settled` path;
-    None without the whole surface), `statistics` (the summits counted, the spectral estimate,
-    and `radii`: the summits' own radii against their mean, a `radii.RadiusSpread` as a dict),
-    `mu` (at the summit radius), `notes` (what was left out and why), `law`: where the
-    asperity law of GW and the interacting model came from."""
+    None without the whole surface, or where its own estimate is beyond HOLDS), `statistics`
+    (the summits counted, the spectral estimate, and `radii`: the summits' own radii against
+    their mean, a `radii.RadiusSpread` as a dict), `mu` (at the summit radius), `notes`
+    (what was left out and why), `law`: where the asperity law of GW and the interacting
+    model came from."""
 
     models: dict
     whole: object
@@ -148,10 +149,15 @@ def answer(topography, adhesion, *, model="whole", accuracy="default", radius=No
     if whole is not None:
         reference = whole.force_max
         relative = {name: m.force_max / reference - 1.0 for name, m in models.items()}
-        needs = next(name for name in MODELS if name in models
-                     and within(models[name].force_max, reference,
-                                whole.error_estimate["force_max"],
-                                settled(models[name].stopped, models[name].force)))
+        estimate = whole.error_estimate["force_max"]
+        if estimate > HOLDS * reference:  # a verdict within HOLDS needs a finer reference
+            notes.append(f"needs: not judged: the whole surface's own estimate is "
+                         f"{estimate / reference:.0%} of its F_max, beyond the {HOLDS:.0%} "
+                         "a verdict needs (refine the map)")
+        else:
+            needs = next(name for name in MODELS if name in models
+                         and within(models[name].force_max, reference, estimate,
+                                    settled(models[name].stopped, models[name].force)))
     statistics = {"summits": vars(counted), "spectral": vars(spectral) if spectral else None,
                   "radii": vars(spread)}
     return Answer(models, whole, relative, needs, statistics, scales.mu, radius, tuple(notes),

@@ -98,10 +98,12 @@ class Resolution:
     def message(self, pixel):
         if not self.coarse:
             return ""
-        return (f"the pixel {pixel:.3g} m is too coarse for the cohesive zone (compliance "
-                f"number {self.compliance:.3g}, limit {COMPLIANCE_MAX}; rms height step "
-                f"{self.height_step:.3g} eps, limit {HEIGHT_STEP_MAX}): use a pixel of at most "
-                f"{self.needed_pixel:.3g} m")
+        over = ([f"for the cohesive zone: compliance number {self.compliance:.3g}, limit "
+                 f"{COMPLIANCE_MAX}"] if self.compliance > COMPLIANCE_MAX else []) + (
+            [f"for the heights: rms height step {self.height_step:.3g} eps, limit "
+             f"{HEIGHT_STEP_MAX}"] if self.height_step > HEIGHT_STEP_MAX else [])
+        return (f"the pixel {pixel:.3g} m is too coarse ({'; '.join(over)}): use a pixel of at "
+                f"most {self.needed_pixel:.3g} m")
 
 
 def resolution(topography, adhesion):
