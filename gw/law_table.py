@@ -237,10 +237,12 @@ class LawTable:
     def check_mu(self, mu):
         """mu as a float if within `mu_range` (ends included), else `InputError`."""
         lo, hi = self.mu_range
-        return float(in_range("mu of the table of solved laws (--law solved)", mu, lo,
-                              np.nextafter(hi, np.inf), closed_lo=True,
-                              why="the table's range; above it JKR's closed forms answer "
-                                  "(python -m fem_asperity laws)"))
+        try:
+            return float(in_range("mu", mu, lo, np.nextafter(hi, np.inf), closed_lo=True))
+        except InputError:
+            raise InputError(f"mu of the table of solved laws (--law solved) must be in "
+                             f"[{lo:g}, {hi:g}]; got {mu!r}: outside, --law bem solves the "
+                             "law at that mu") from None
 
     def law(self, mu, path="approach"):
         """`TableLaw` of `path` ('approach', the GW integrals' law, or 'retraction') at mu

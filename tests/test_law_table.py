@@ -107,7 +107,7 @@ def test_plain_fmax_warns_where_the_table_puts_the_paper_off(capsys):
 
 
 @pytest.mark.parametrize("args, names", [
-    (["fmax", "--mu", "60", "--zeta", "1", "--law", "solved"], ("table", "50", "JKR")),
+    (["fmax", "--mu", "60", "--zeta", "1", "--law", "solved"], ("table", "50]", "--law bem")),
     (["fmax", "--mu", "0.005", "--zeta", "1", "--law", "solved"], ("table", "0.01")),
     (["curve", "--mu", "1", "--zeta", "1", "--law", "solved", "--accuracy", "fine"],
      ("--accuracy",)),
