@@ -532,7 +532,8 @@ def _read_off_map(name, mu, zeta, sigma_r_eta):
     return Effect(name, found.size, found.uncertainty,
                   f"read from the measured map shipped with the package: the largest error of "
                   f"{what} against the surface solved whole, over the {found.surfaces} surfaces "
-                  f"around the scene ({around})")
+                  f"around the scene's summits (mu {mu:.3g}, zeta {zeta:.3g}, sigma R eta "
+                  f"{sigma_r_eta:.3g}: {around})")
 
 
 def _measured_here(unbounded, mu, zeta, sigma_r_eta, say=None):
