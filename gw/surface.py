@@ -54,7 +54,9 @@ class RoughSurface:
 
     def __post_init__(self):
         positive("zeta", self.zeta)
-        in_range("omega", self.omega, 0.0, 1.0 + 1e-15)
+        omega = in_range("omega", self.omega)  # a finite real number
+        if not 0.0 < omega <= 1.0 + 1e-15:  # 1 itself is GW's default
+            raise InputError(f"omega must be in (0, 1]; got {omega!r}")
 
     @classmethod
     def from_physical(cls, *, sigma, radius, density, eps):
