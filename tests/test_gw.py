@@ -89,6 +89,14 @@ def test_strength_is_an_interior_maximum_of_the_adaptive_quadrature(mu, zeta, om
     assert found.f_max == pytest.approx(-ref[1], rel=1e-8)
 
 
+@pytest.mark.parametrize("omega", [0.0, -1.0, 1.5])
+def test_omega_is_refused_outside_its_range_and_one_is_in_it(omega):
+    """ω in (0, 1]: 1 (GW's default) is taken, and the refusal says so."""
+    assert RoughSurface(2.0, 1.0).omega == 1.0
+    with pytest.raises(InputError, match=r"omega must be in \(0, 1\]"):
+        RoughSurface(2.0, omega)
+
+
 def test_strength_refuses_a_maximum_it_cannot_bracket():
     """A law whose pull grows without end (F̄ keeps falling with d̃): no maximum to return."""
 
