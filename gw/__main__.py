@@ -294,8 +294,9 @@ def _fmax(args, law, surface, scales, head):
     else:
         extra = {"strength [Pa]": row["si"]["strength"],
                  "d_at_max [m]": row["si"]["d_at_max"]} if scales is not None else {}
-        if "law_error" in row:
+        if "law_error" in row:  # absolute (F̄max's unit) and relative, as the JSON holds them
             extra["f_max_law_error"] = row["law_error"]["f_max"]
+            extra["f_max_law_error_relative"] = row["law_error"]["f_max_relative"]
         print_table([{"quantity": k, "value": v} for k, v in (row | extra).items()
                      if k not in ("si", "omega_reading", "law_error", "warning",
                                   "shared_ground")],

@@ -154,6 +154,12 @@ def test_fmax_with_the_corrected_law_carries_its_measured_error(capsys):
     error = row["law_error"]
     assert error["f_max_relative"] == stated_error(1.0)
     assert error["f_max"] == pytest.approx(error["f_max_relative"] * row["f_max"])
+    assert main(["fmax", "--law", "corrected", "--mu", "1", "--zeta", "3"]) == 0
+    rows = dict(line.split() for line in capsys.readouterr().out.splitlines()[1:])
+    # the text says which error is absolute (F̄max's unit), which relative
+    assert float(rows["f_max_law_error"]) == pytest.approx(error["f_max"], rel=1e-3)
+    assert float(rows["f_max_law_error_relative"]) == pytest.approx(error["f_max_relative"],
+                                                                    rel=1e-3)
     assert main(["fmax", "--law", "corrected", "--mu", "100", "--zeta", "3", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["law_error"]["f_max"] is None  # not measured
     assert main(["curve", "--law", "corrected", "--mu", "1", "--zeta", "3", "--json"]) == 0
