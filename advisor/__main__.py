@@ -61,11 +61,16 @@ def main(argv=None):
         return 0
     what = {"pull_off": "the pull-off force", "f_max": "the surface's strength F_max",
             "jump_in": "the jump-in's separation", "jump_out": "the jump-out's separation"}
-    print(f"Effects on {what[scene.quantity]} (relative):")
-    print_table(record["effects"], ("name", "size", "uncertainty", "how"))
-    for effect in record["effects"]:
+    s = scene.scales
+    print(f"mu = {scene.mu:.4g}, R/eps = {s.R / s.eps:.4g}, tolerance {scene.tolerance:.2%}")
+    print(f"\nEffects on {what[scene.quantity]} (relative; how: below, by number):")
+    effects = record["effects"]
+    print_table([{"#": k, **e, "how": e["how"].split(":")[0]} for k, e in enumerate(effects, 1)],
+                ("#", "name", "size", "uncertainty", "how"))
+    for k, effect in enumerate(effects, 1):
+        print(f"  [{k}] {effect['how']}")
         if effect["size"] is None:
-            print(f"not bounded here: {effect['name']}: {effect['note']}")
+            print(f"      not bounded here: {effect['note']}")
     print("\nModels, cheapest first (error: the sum of the effects each leaves out):")
     print_table(record["models"], ("name", "value", "value_si", "unit", "error", "cost_s"))
     print(f"\nchoice: {advice.message}")

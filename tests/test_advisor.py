@@ -272,6 +272,23 @@ def test_a_rough_surface_scene_measures_each_law_and_says_what_gw_leaves_out(tmp
     assert not (tmp_path / "o").exists()
 
 
+def test_the_text_output_gives_the_scene_and_each_effects_how_by_number(capsys):
+    """The scene's μ and tolerance first; the effects' table with each 'how' cut to its
+    first clause, the whole of it below, by number, with why an effect is not bounded."""
+    from advisor.__main__ import main
+
+    scene = read_scene(EXAMPLES / "mems_rough_surface.toml")
+    assert main([str(EXAMPLES / "mems_rough_surface.toml")]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out[0] == f"mu = {scene.mu:.4g}, R/eps = {scene.scales.R / scene.scales.eps:.4g}, " \
+                     f"tolerance {scene.tolerance:.2%}"
+    effects = advise(scene).effects
+    for k, effect in enumerate(effects, 1):
+        assert f"  [{k}] {effect.how}" in out
+    table = out[out.index(next(line for line in out if line.startswith("#"))):][:len(effects) + 1]
+    assert all(effect.how.split(":")[0] in row for effect, row in zip(effects, table[1:]))
+
+
 def test_a_scene_has_one_body_and_asks_what_it_can_answer():
     surface = GOOD.replace("[probe]\nradius = \"50 nm\"",
                            "[surface]\nsigma = \"2 nm\"\nradius = \"0.4 um\"\n"
