@@ -109,11 +109,9 @@ def measure_at(model, *, mu, zeta, sigma_r_eta, progress=None):
                                  if settled(curve.stopped, curve.approach) else None}})
         if progress:
             progress((k + 1) / len(scenes))
-    errors = [d["errors"][model] for d in draws]
-    size = None if any(e is None for e in errors) else float(max(abs(e) for e in errors))
+    least, size = _range([d["errors"][model] for d in draws])
     return MeasuredError(size, _uncertainty(model, draws), len(scenes),
-                         {"mu": [mu], "zeta": [zeta], "sigma_r_eta": [sigma_r_eta]}, (),
-                         None if size is None else float(min(abs(e) for e in errors)))
+                         {"mu": [mu], "zeta": [zeta], "sigma_r_eta": [sigma_r_eta]}, (), least)
 
 
 def map_record(records, provenance):
@@ -182,15 +180,19 @@ def measured_error(model, *, mu, zeta, sigma_r_eta, record=None):
     solved = {tuple(s[k] for k in AXES + ("seed",)) for s in near}
     missing = tuple(c for c in itertools.product(*(around[k] for k in AXES), draws)
                     if c not in solved)
-    errors = [s["errors"][model] for s in near]
-    size = (None if missing or any(e is None for e in errors)
-            else float(max(abs(e) for e in errors)))
+    least, size = (None, None) if missing else _range([s["errors"][model] for s in near])
     points = {}  # the draws of each grid point: their spread is the sample's share
     for s in near:
         points.setdefault(tuple(s[k] for k in AXES), []).append(s)
     uncertainty = max((_uncertainty(model, draws) for draws in points.values()), default=np.nan)
-    least = None if size is None else float(min(abs(e) for e in errors))
     return MeasuredError(size, uncertainty, len(near), around, missing, least)
+
+
+def _range(errors):
+    """(smallest, largest) |error| of `errors`; (None, None) where one has no answer (None)."""
+    if any(e is None for e in errors):
+        return None, None
+    return float(min(abs(e) for e in errors)), float(max(abs(e) for e in errors))
 
 
 def _uncertainty(model, draws):
