@@ -30,9 +30,11 @@ from .report import counted
 #: The quick tier: six caps at μ = 1, ζ = 2, σRη = 0.05 (a 58² map; seconds).
 QUICK = ({"mu": 1.0, "zeta": 2.0, "sigma_r_eta": 0.05, "summits": 6},)
 #: The map: μ below and above the jump-in onset (0.697), ζ smooth to rough (to 12: MEMS
-#: surfaces, σ of nanometres on ε of tenths), σRη sparse to crowded; each surface as
+#: surfaces), with the paper's σ = 0.5, 1, 2 nm on ε = 0.3 nm (ζ = 5/3, 10/3, 20/3) on the grid so
+#: that its points are read at their own ζ; σRη sparse to crowded; each surface as
 #: `gw.explicit.measured_map.map_scene` makes it (methods.md §14). Not pinned by a test.
-MAP_MU, MAP_ZETA, MAP_SRE = (0.1, 0.3, 1.0, 2.0), (0.5, 2.0, 6.0, 12.0), (0.02, 0.05, 0.15)
+MAP_MU, MAP_SRE = (0.1, 0.3, 1.0, 2.0), (0.02, 0.05, 0.15)
+MAP_ZETA = (0.5, 5 / 3, 2.0, 10 / 3, 6.0, 20 / 3, 12.0)
 #: Self-affine surfaces, answered as a user's map is (`gw.explicit.answer`), within the map's
 #: resolution bounds at μ = 1, ζ ≤ 2 (methods.md §14). Not pinned by a test.
 AFFINE = {"n": 128, "hurst": 0.8, "short": 12, "long": 64}
