@@ -430,46 +430,55 @@ def _answered(record):
     return settled(m["stopped"], m["approach"])
 
 
+#: The map figure's models, one row each, as (key of a record's errors, label).
+FIGURE_MODELS = (("gw_sum", "GW's sum over the summits"),
+                 ("gw_cells", "GW, ground counted once"),
+                 ("interacting", "interacting asperities"))
+
+
 def map_figure(records):
-    """The error of GW's sum over the summits, of that sum with the ground counted once and of
-    the interacting model against σRη, per μ and ζ (GW's integral differs from the sum by the
-    sample: see the report)."""
+    """The F̄max error of GW's sum over the summits, of that sum with the ground counted once and
+    of the interacting model (a row each) against σRη, per μ (a column each), one colour per ζ,
+    filled marks the first draw and open ones the second (GW's integral differs from the sum by
+    the sample: see the report)."""
+    from matplotlib import colormaps
     from matplotlib.figure import Figure
 
     mus = sorted({r["scene"]["mu"] for r in records})
-    fig = Figure(figsize=(4.4 * len(mus), 3.8), layout="constrained")
-    axes = fig.subplots(1, len(mus), squeeze=False)[0]
-    for ax, mu in zip(axes, mus):
-        for zeta, color in zip(sorted({r["scene"]["zeta"] for r in records}),
-                               ("C0", "C1", "C2", "C3")):
-            for seed in sorted({r["scene"]["seed"] for r in records}):
-                rows = sorted((r for r in records if r["scene"]["mu"] == mu
-                               and r["scene"]["zeta"] == zeta and r["scene"]["seed"] == seed),
-                              key=lambda r: r["scene"]["sigma_r_eta"])
-                x = [r["scene"]["sigma_r_eta"] for r in rows]
-                first = seed == records[0]["scene"]["seed"]  # lines and labels; others: marks
-                ax.plot(x, [100 * r["errors"]["gw_sum"] for r in rows], "o:" if first else "o",
-                        color=color, mfc=None if first else "none",
-                        label=f"GW (sum), ζ = {zeta:g}" if first else None)
-                ax.plot(x, [100 * r["errors"]["gw_cells"] for r in rows],
-                        "^-" if first else "^", color=color, mfc=None if first else "none",
-                        label=f"ground counted once, ζ = {zeta:g}" if first else None)
-                # a path that stopped in tension has no F̄max of its own: a cross, no line
-                answered = [100 * r["errors"]["interacting"] if _answered(r) else np.nan
-                            for r in rows]
-                ax.plot(x, answered, "s--" if first else "s", color=color,
-                        mfc=None if first else "none",
-                        label=f"interacting, ζ = {zeta:g}" if first else None)
-                ax.plot(x, [np.nan if _answered(r) or r["errors"]["interacting"] is None
-                            else 100 * r["errors"]["interacting"] for r in rows], "x",
-                        color=color)  # no path at all: not drawn
-        ax.axhspan(-10, 10, color="0.9")
-        ax.set_xscale("log")
-        ax.set_xticks(MAP_SRE, [f"{v:g}" for v in MAP_SRE])
-        ax.minorticks_off()
+    zetas = sorted({r["scene"]["zeta"] for r in records})
+    seeds = sorted({r["scene"]["seed"] for r in records})
+    colors = colormaps["viridis"](np.linspace(0.0, 0.9, len(zetas)))
+    fig = Figure(figsize=(3.4 * len(mus), 2.6 * len(FIGURE_MODELS) + 0.6), layout="constrained")
+    grid = fig.subplots(len(FIGURE_MODELS), len(mus), squeeze=False, sharex=True, sharey="row")
+    for (model, label), axes in zip(FIGURE_MODELS, grid):
+        for ax, mu in zip(axes, mus):
+            for zeta, color in zip(zetas, colors):
+                for seed in seeds:
+                    rows = sorted((r for r in records if r["scene"]["mu"] == mu
+                                   and r["scene"]["zeta"] == zeta
+                                   and r["scene"]["seed"] == seed),
+                                  key=lambda r: r["scene"]["sigma_r_eta"])
+                    x = [r["scene"]["sigma_r_eta"] for r in rows]
+                    first = seed == seeds[0]
+                    # the interacting model's path stopped in tension: no F̄max of its own (×)
+                    own = [model != "interacting" or _answered(r) for r in rows]
+                    y = [100 * r["errors"][model] if ok and r["errors"][model] is not None
+                         else np.nan for r, ok in zip(rows, own)]
+                    ax.plot(x, y, "o-" if first else "o", color=color, ms=4, lw=0.8,
+                            mfc=None if first else "none",
+                            label=f"ζ = {zeta:.3g}" if first else None)
+                    ax.plot(x, [np.nan if ok or r["errors"][model] is None
+                                else 100 * r["errors"][model] for r, ok in zip(rows, own)],
+                            "x", color=color)
+            ax.axhspan(-10, 10, color="0.9")
+            ax.set_xscale("log")
+            ax.set_xticks(MAP_SRE, [f"{v:g}" for v in MAP_SRE])
+            ax.minorticks_off()
+            ax.set_title(f"{label}, μ = {mu:g}", fontsize=8)
+        axes[0].set_ylabel("F̄max error against\nthe whole surface [%]")
+    for ax in grid[-1]:
         ax.set_xlabel("summit density σRη")
-        ax.set_ylabel("F̄max error against the whole surface [%]")
-        ax.set_title(f"μ = {mu:g} (open: a second draw; ×: interacting stopped)",
-                     fontsize=9)
-    axes[0].legend(fontsize=6)
+    grid[0][0].legend(fontsize=6, ncol=2)
+    fig.suptitle("grey: within 10 %; open marks: a second draw; ×: the interacting path "
+                 "stopped in tension", fontsize=9)
     return fig
