@@ -244,14 +244,17 @@ def _curve(args, parser):
     else:
         estimates = ("error_estimate", "relative_error_estimate")
         absolute, relative = (row[key] or {} for key in estimates)
+        # below the table, not in it: a message is a sentence, and would widen every column
         provenance = ("layer_groups", "inputs", "version", "solver_revision", "si",
-                      "estimate_floor")
+                      "estimate_floor", "message")
         si = row.get("si", {})
         print_table([{"quantity": k, "value": v, "error_estimate": absolute.get(k),
                       "relative": relative.get(k), "SI": _si_text(k, si.get(k))}
                      for k, v in row.items() if k not in estimates + provenance],
                     ("quantity", "value", "error_estimate", "relative")
                     + (("SI",) if si else ()))
+        if row["message"]:
+            print(f"message: {row['message']}")
         if row["layer_groups"]:
             print("layer: " + ", ".join(f"{k} {format_cell(v)}"
                                         for k, v in row["layer_groups"].items()))
