@@ -5,6 +5,8 @@ import json
 import sys
 from pathlib import Path
 
+import numpy as np
+
 from fem_asperity.plumbing.cli import Parser, ProgressBar, dump_json, print_table, run
 from fem_asperity.plumbing.files import output_folder, staged_folder, write_atomic
 from fem_asperity.solver.output import write_all
@@ -12,6 +14,7 @@ from fem_asperity.solver.output import write_all
 from .advice import (
     SURFACE_MODELS,
     WHOLE,
+    MadeExplicit,
     advise,
     check_runnable,
     quantity_key,
@@ -35,7 +38,8 @@ def build_parser():
     parser.add_argument("--out", type=Path,
                         help="with --run: the output folder (advice.json, the scene file, and "
                              "the curve's files where the model is a solve, or the surface's "
-                             "where it is run on the scene's height map)")
+                             "where it is run on the scene's height map or its statistics made "
+                             "explicit)")
     return parser
 
 
@@ -81,7 +85,9 @@ def _run(advice, record, out, scene_name):
     """The chosen model run and written into `out`, all or nothing: advice.json (the advice, and
     the model's value in SI), the scene file as given, and curve/ (`fem_asperity.write_all`,
     SI) where the model is a solve, or surface/ (as `gw explicit --out` writes it) where it
-    is run on the scene's height map (the interacting asperities or the whole surface)."""
+    is run on the scene's height map (the interacting asperities or the whole surface), or
+    surface/whole_curves.csv where the whole surface is the scene's statistics made explicit
+    (`MadeExplicit`)."""
     from gw.explicit.answer import Answer
     from gw.explicit.cli import answer_record, write_answer
     from gw.explicit.relax import keep_freed_memory
@@ -95,6 +101,10 @@ def _run(advice, record, out, scene_name):
         bar.close()
     if isinstance(result, Answer):
         record["result"] = _surface_result(advice, result)
+    elif isinstance(result, MadeExplicit):
+        record["result"] = _explicit_result(advice, result)
+        if result.error > advice.scene.tolerance:
+            print(f"warning: {record['result']['note']}", file=sys.stderr)
     elif result is not None:
         value = value_of(result, quantity_key(advice.scene))
         to_si, unit = si_unit(advice.scene)
@@ -116,6 +126,10 @@ def _run(advice, record, out, scene_name):
             (stage / "surface").mkdir()
             write_answer(stage / "surface", result,
                          answer_record(result, advice.scene.topography()))
+        elif isinstance(result, MadeExplicit):
+            (stage / "surface").mkdir()
+            write_atomic(stage / "surface" / "whole_curves.csv",
+                         _explicit_curves(advice, result))
         elif result is not None:
             write_all(result, stage / "curve", advice.scene.scales)
     print(f"wrote {out}", file=sys.stderr)
@@ -150,6 +164,49 @@ def _surface_result(advice, found):
                                      / whole.pressure_max},
                   "status": whole.status, "message": whole.message,
                   "relative_to_whole": found.relative_to_whole, "needs": found.needs}
+
+
+def _explicit_result(advice, made):
+    """The surface solved whole on the scene's statistics made explicit, as the advice states a
+    model's value (F̄max per summit, and in Pa), with its relative error and each draw."""
+    from gw.explicit.measured_map import ACCURACY
+
+    to_si, unit = si_unit(advice.scene)
+    spread = (max(made.values) - min(made.values)) / made.f_max
+    note = ("" if made.error <= advice.scene.tolerance else
+            f"the surface solved whole on {len(made.draws)} draws of the scene's statistics is "
+            f"within {made.error:.2g} (their spread {spread:.2g}), beyond the tolerance "
+            f"{advice.scene.tolerance:g}: a measured height map ([surface] topography) answers "
+            "for the surface itself")
+    return {"model": advice.choice, "value": made.f_max, "value_si": made.f_max * to_si,
+            "unit": unit, "error": made.error, "note": note,
+            "files": "surface/whole_curves.csv",
+            "how": f"the scene's statistics made explicit as the measured map's surfaces are: "
+                   f"{len(made.draws)} draws of {made.draws[0].scene.summits} caps at the "
+                   f"summits' zeta and sigma R eta, solved whole ({ACCURACY}); the value is "
+                   "their mean, the error the largest one's own estimate plus the spread "
+                   "between them",
+            "draws": [{"seed": d.scene.seed, "pixel_sqrt_R_eps": d.scene.pixel,
+                       "f_max": d.models["whole"].f_max,
+                       "estimate_relative": d.estimate / d.models["whole"].f_max,
+                       "jumps": list(d.models["whole"].jumps),
+                       "seconds": d.models["whole"].seconds} for d in made.draws]}
+
+
+def _explicit_curves(advice, made):
+    """CSV of the whole surfaces' approach and retraction of `made`: each draw's mean separation
+    d (in the summits' σ_s and in m) and F̄ per summit (2πRΔγ; < 0 tensile) and per nominal
+    area (Pa)."""
+    to_si, _ = si_unit(advice.scene)
+    lines = ["seed,d_over_sigma_s,d_m,F_approach,F_retraction,F_approach_Pa,F_retraction_Pa"]
+    for draw in made.draws:
+        whole, sigma_m = draw.models["whole"], draw.scene.zeta * advice.scene.scales.eps
+        retraction = (np.full(whole.d.size, np.nan) if whole.retraction is None
+                      else whole.retraction)
+        for d, up, down in zip(whole.d, whole.approach, retraction):
+            lines.append(f"{draw.scene.seed},{d:.9g},{d * sigma_m:.9g},{up:.9g},{down:.9g},"
+                         f"{up * to_si:.9g},{down * to_si:.9g}")
+    return "\n".join(lines) + "\n"
 
 
 if __name__ == "__main__":

@@ -28,7 +28,9 @@ is made. On a height map the interacting asperities on its own summits are a
 model too, their error (the far field's) read off the same map; the spread of the map's
 summit radii, which the map's caps of one R do not have, is computed for the map
 (`gw.explicit.radii`) and counted against every model but the whole surface; `run` answers by
-the interacting asperities or by the map solved whole as `gw explicit` does.
+the interacting asperities or by the map solved whole as `gw explicit` does. On a surface given
+by σ, R, η, the surface solved whole is its statistics made explicit as the map's surfaces are
+(`MadeExplicit`).
 
 A model's error is the sum of the sizes and uncertainties of the effects it leaves out, each
 measured alone against its own reference: a first-order estimate, not a bound on effects that
@@ -116,7 +118,9 @@ class Model:
 class Advice:
     """The scene, every effect, every model (cheapest first), the one chosen and why, and the
     solves of the whole scene the advice made, by accuracy (`CurveResult`s: the draft the
-    effects were measured with, and the default where it was measured as the safe model)."""
+    effects were measured with, and the default where it was measured as the safe model), and
+    on a GW surface the draws of its statistics made explicit where it measured the summits'
+    interaction on them (`explicit`, `gw.explicit.measured_map.explicit_draws`)."""
 
     scene: object
     effects: tuple[Effect, ...]
@@ -124,6 +128,7 @@ class Advice:
     choice: str
     message: str
     solves: dict = field(default_factory=dict)
+    explicit: tuple = ()
 
     def records(self):
         """A JSON-ready dict: the scene in SI, the effects, the models (the value
@@ -232,18 +237,19 @@ def advise(scene, *, solve=None, measure=False, say=None):
                    "fem_asperity curve ... --method bem)", solves)
 
 
-def _chosen(scene, effects, models, otherwise, solves=None):
+def _chosen(scene, effects, models, otherwise, solves=None, explicit=()):
     """The `Advice`: the cheapest of `models` whose error meets the scene's tolerance, else the
     last (the safe one), said why in `otherwise`."""
     meets = [m for m in models if m.error is not None and m.error <= scene.tolerance]
     solves = solves or {}
     if not meets:
-        return Advice(scene, tuple(effects), tuple(models), models[-1].name, otherwise, solves)
+        return Advice(scene, tuple(effects), tuple(models), models[-1].name, otherwise, solves,
+                      explicit)
     best = meets[0]
     return Advice(scene, tuple(effects), tuple(models), best.name,
                   f"{best.name}: the effects it leaves out sum to {best.error:.2g} <= the "
                   f"tolerance {scene.tolerance:g} (each measured alone: a first-order estimate)",
-                  solves)
+                  solves, explicit)
 
 
 #: The models that solve the whole scene, by name: the accuracy preset each runs (`run`).
@@ -388,13 +394,14 @@ def _advise_surface(scene, measure=False, say=None):
     rough = rough_surface(surface, s)
     table = shipped_table()
     lo, hi = table.mu_range
-    # the map's surfaces are caps of ω = 1: the point is the summits' (σ_s = ωσ), not σ's
-    summits = (scene.mu, rough.omega * rough.zeta, rough.omega * sigma_r_eta)
-    effects = [_read_off_map(INTERACTION, *summits)]
+    summits = summits_point(scene)
+    effects, explicit = [_read_off_map(INTERACTION, *summits)], ()
     if effects[0].size is None and "topography" not in surface:
-        effects[0] = (_measured_here(effects[0], *summits, say) if measure
-                      else replace(effects[0], note=f"{effects[0].note}; python -m advisor "
-                                   "--run measures it at the scene"))
+        if measure:
+            effects[0], explicit = _measured_here(effects[0], *summits, say)
+        else:
+            effects[0] = replace(effects[0], note=f"{effects[0].note}; python -m advisor "
+                                 "--run measures it at the scene")
     interacting = "topography" in surface and surface["summits"] <= MAX_SUMMITS
     if interacting:
         effects.append(_read_off_map(FAR_FIELD, *summits))
@@ -449,7 +456,19 @@ def _advise_surface(scene, measure=False, say=None):
     models += (Model(WHOLE, None, (), None, None),)
     return _chosen(scene, effects, models, "no GW model is known to meet the tolerance (the "
                    "effects each leaves out sum to more, or one is not bounded here): the safe "
-                   f"model is {WHOLE}")
+                   f"model is {WHOLE}", explicit=explicit)
+
+
+def summits_point(scene):
+    """(μ, ζ, σRη) of a GW scene's summits, where the measured map is read and the statistics
+    are made explicit: the map's surfaces are caps of ω = 1, so the point is the summits' (σ_s
+    = ωσ), not σ's."""
+    from .scene import rough_surface
+
+    s, surface = scene.scales, scene.surface
+    rough = rough_surface(surface, s)
+    sigma_r_eta = surface["sigma"] * s.R * surface["density"]
+    return scene.mu, rough.omega * rough.zeta, rough.omega * sigma_r_eta
 
 
 def _statistics_effect(scene, f_counted, table):
@@ -537,30 +556,64 @@ def _read_off_map(name, mu, zeta, sigma_r_eta):
 
 
 def _measured_here(unbounded, mu, zeta, sigma_r_eta, say=None):
-    """The effect `unbounded` (one of MAP_MODELS, outside the map) measured at the scene's own
-    point as the map is made (`gw.explicit.measured_map.measure_at`); as it was, its note
-    saying why, where that surface cannot be made or the model has no answer on it."""
-    from gw.explicit.measured_map import MAP_SEEDS, MAP_SUMMITS, measurable, measure_at
+    """(effect, draws): the effect `unbounded` (one of MAP_MODELS, outside the map) measured at
+    the scene's own point as the map is made, on the draws of GW's surface made explicit there
+    (`gw.explicit.measured_map.explicit_draws`, kept for `run`); where that surface cannot be
+    made or the model has no answer on it, the effect as it was, its note saying why."""
+    from gw.explicit.measured_map import (
+        MAP_SEEDS,
+        MAP_SUMMITS,
+        explicit_draws,
+        measurable,
+        measured_from,
+    )
 
     model, what = MAP_MODELS[unbounded.name]
     try:
         side = measurable(mu, zeta, sigma_r_eta)
     except InputError as exc:
         return replace(unbounded, note=f"{unbounded.note}; not measured at the scene either: "
-                       f"{exc}")
+                       f"{exc}"), ()
     if say:
         say(f"measuring {unbounded.name} at the scene itself (mu = {mu:.3g}, the summits' zeta "
             f"= {zeta:.3g} and sigma R eta = {sigma_r_eta:.3g}, outside the measured map): "
             f"{len(MAP_SEEDS)} GW surfaces made explicit, {MAP_SUMMITS} caps on {side} x {side} "
             "pixels each, solved whole (the map's own times: docs/rough_explicit_report.md) ...")
-    found = measure_at(model, mu=mu, zeta=zeta, sigma_r_eta=sigma_r_eta)
+    draws = explicit_draws(mu, zeta, sigma_r_eta)
+    found = measured_from(model, draws)
     how = (f"computed for this scene: the largest error of {what} against the surface solved "
            f"whole, on {found.surfaces} GW surfaces made explicit at its mu, zeta, sigma R eta "
            f"({MAP_SUMMITS} caps each, as the measured map's)")
     if found.size is None:
         return Effect(unbounded.name, None, None, how, f"{what} found no equilibrium before "
-                      "the total force turned compressive on one of them")
-    return Effect(unbounded.name, found.size, found.uncertainty, how)
+                      "the total force turned compressive on one of them"), draws
+    return Effect(unbounded.name, found.size, found.uncertainty, how), draws
+
+
+@dataclass(frozen=True)
+class MadeExplicit:
+    """The surface solved whole on a GW scene's statistics (σ, R, η) made explicit as the
+    measured map's surfaces are: `draws`, the `gw.explicit.compare.Comparison`s of its
+    MAP_SEEDS surfaces of MAP_SUMMITS caps at the summits' ζ and σRη (`summits_point`), solved
+    whole at the map's accuracy. `f_max`: the mean of their whole surfaces' F̄max [2πRΔγ per
+    summit]; `error`: relative to it, the largest whole surface's own estimate plus the spread
+    between the draws (the sample's share, as the measured map counts it)."""
+
+    draws: tuple
+
+    @property
+    def values(self):
+        """Each draw's whole-surface F̄max [2πRΔγ per summit]."""
+        return [d.models["whole"].f_max for d in self.draws]
+
+    @property
+    def f_max(self):
+        return float(np.mean(self.values))
+
+    @property
+    def error(self):
+        own = max(d.estimate / d.models["whole"].f_max for d in self.draws)
+        return float(own + (max(self.values) - min(self.values)) / abs(self.f_max))
 
 
 def run(advice, *, solve=None, progress=None):
@@ -568,10 +621,16 @@ def run(advice, *, solve=None, progress=None):
     or the BEM `default` solve of the whole scene with its error estimate), the `gw.explicit`
     `Answer` of the interacting asperities or the surface solved whole on a scene's height map
     (`default`, a free patch, as `gw explicit` solves it; `progress(fraction)` as the whole
-    surface goes), or None for a closed form or the table (their value is the model's). A GW
-    surface given by σ, R, η has no map to solve: `InputError`."""
+    surface goes), the `MadeExplicit` surface of a GW scene given by σ, R, η (on the draws the
+    advice measured, else solved now; `progress` after each), or None for a closed form or the
+    table (their value is the model's). `InputError` where it cannot be run (`check_runnable`).
+    """
     scene = advice.scene
     check_runnable(advice)
+    if advice.choice == WHOLE and "topography" not in scene.surface:
+        from gw.explicit.measured_map import explicit_draws
+
+        return MadeExplicit(advice.explicit or explicit_draws(*summits_point(scene), progress))
     if advice.choice in SURFACE_MODELS:
         return _on_the_map(scene, SURFACE_MODELS[advice.choice], progress)
     accuracy = SOLVES.get(advice.choice)
@@ -587,15 +646,25 @@ def run(advice, *, solve=None, progress=None):
 
 def check_runnable(advice):
     """`InputError`, naming the scene's key, where the model chosen cannot be run: on a GW
-    surface given by σ, R, η (no height map to run it on), or on a height map `gw explicit`
+    surface given by σ, R, η, the interacting asperities (no summits to place) or statistics
+    too large to make explicit (`measured_map.measurable`); on a height map, one `gw explicit`
     refuses (too large, too small, too coarse for the cohesive zone)."""
     scene = advice.scene
     if advice.choice not in SURFACE_MODELS:
         return
     if "topography" not in scene.surface:
-        raise InputError(f"--run: the model chosen, {advice.choice}, needs the surface's height "
-                         "map: give [surface] topography, or run python -m gw explicit "
-                         f"--topography MAP ...; {_why_not_gw(advice)}")
+        from gw.explicit.measured_map import measurable
+
+        try:
+            if advice.choice != WHOLE:
+                raise InputError("it needs the summits' places")
+            measurable(*summits_point(scene))
+        except InputError as exc:
+            raise InputError(f"surface.sigma, surface.density: --run: the model chosen, "
+                             f"{advice.choice}, cannot be run on the scene's statistics made "
+                             f"explicit ({exc}): give [surface] topography, or run python -m gw "
+                             f"explicit --topography MAP ...; {_why_not_gw(advice)}") from None
+        return
     from gw.explicit.whole import check_map
 
     try:

@@ -89,29 +89,48 @@ def measurable(mu, zeta, sigma_r_eta):
     return side
 
 
-def measure_at(model, *, mu, zeta, sigma_r_eta, progress=None):
-    """`MeasuredError` of `model` solved at (μ, ζ, σRη) itself, as the map is made: its draws
-    (MAP_SEEDS) of GW's surface made explicit, compared (`compare.compare`, at ACCURACY) with
-    the table's law (no solve), the uncertainty as `measured_error`'s; for a point the map
-    does not hold. InputError before anything is solved where it is not `measurable`.
-    `progress(fraction)` after each draw."""
-    from .compare import compare, settled
+def explicit_draws(mu, zeta, sigma_r_eta, progress=None):
+    """The map's draws (MAP_SEEDS) of GW's surface made explicit at (μ, ζ, σRη), each compared
+    (`compare.compare`, at ACCURACY) with the table's law (no solve of it): a tuple of
+    `compare.Comparison`, the surface solved whole among their models. InputError before
+    anything is solved where the point is not `measurable`. `progress(fraction)` after each
+    draw."""
+    from .compare import compare
     from .interacting import AsperityLaw
 
     measurable(mu, zeta, sigma_r_eta)
     scenes = [map_scene(mu, zeta, sigma_r_eta, seed) for seed in MAP_SEEDS]
     law, draws = AsperityLaw.tabulated(mu), []
     for k, scene in enumerate(scenes):
-        found = compare(scene, accuracy=ACCURACY, law=law)
-        curve = found.models[model]
-        draws.append({"estimate": found.estimate / found.models["whole"].f_max,
-                      "errors": {model: found.errors[model]
-                                 if settled(curve.stopped, curve.approach) else None}})
+        draws.append(compare(scene, accuracy=ACCURACY, law=law))
         if progress:
             progress((k + 1) / len(scenes))
-    least, size = _range([d["errors"][model] for d in draws])
-    return MeasuredError(size, _uncertainty(model, draws), len(scenes),
-                         {"mu": [mu], "zeta": [zeta], "sigma_r_eta": [sigma_r_eta]}, (), least)
+    return tuple(draws)
+
+
+def measured_from(model, draws):
+    """`MeasuredError` of `model` on `draws` (`explicit_draws` of one point), its uncertainty
+    as `measured_error`'s."""
+    from .compare import settled
+
+    found = []
+    for comparison in draws:
+        curve = comparison.models[model]
+        found.append({"estimate": comparison.estimate / comparison.models["whole"].f_max,
+                      "errors": {model: comparison.errors[model]
+                                 if settled(curve.stopped, curve.approach) else None}})
+    least, size = _range([d["errors"][model] for d in found])
+    scene = draws[0].scene
+    return MeasuredError(size, _uncertainty(model, found), len(draws),
+                         {"mu": [scene.mu], "zeta": [scene.zeta],
+                          "sigma_r_eta": [scene.sigma_r_eta]}, (), least)
+
+
+def measure_at(model, *, mu, zeta, sigma_r_eta, progress=None):
+    """`MeasuredError` of `model` solved at (μ, ζ, σRη) itself, as the map is made
+    (`explicit_draws`, `measured_from`): for a point the map does not hold. InputError before
+    anything is solved where it is not `measurable`."""
+    return measured_from(model, explicit_draws(mu, zeta, sigma_r_eta, progress))
 
 
 def map_record(records, provenance):
