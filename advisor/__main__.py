@@ -103,8 +103,8 @@ def _run(advice, record, out, scene_name):
         record["result"] = _surface_result(advice, result)
     elif isinstance(result, MadeExplicit):
         record["result"] = _explicit_result(advice, result)
-        if result.error > advice.scene.tolerance:
-            print(f"warning: {record['result']['note']}", file=sys.stderr)
+        for warning in record["result"]["resolution"] + record["result"]["notes"]:
+            print(f"warning: {warning}", file=sys.stderr)
     elif result is not None:
         value = value_of(result, quantity_key(advice.scene))
         to_si, unit = si_unit(advice.scene)
@@ -167,45 +167,64 @@ def _surface_result(advice, found):
 
 
 def _explicit_result(advice, made):
-    """The surface solved whole on the scene's statistics made explicit, as the advice states a
-    model's value (F̄max per summit, and in Pa), with its relative error and each draw."""
+    """The surface solved whole on the scene's statistics made explicit (`MadeExplicit`), as the
+    advice states a model's value (F̄max per summit, and in Pa), with its relative error, each
+    draw, the resolution flags, and a note where the error passes the tolerance."""
     from gw.explicit.measured_map import ACCURACY
 
     to_si, unit = si_unit(advice.scene)
-    spread = (max(made.values) - min(made.values)) / made.f_max
-    note = ("" if made.error <= advice.scene.tolerance else
-            f"the surface solved whole on {len(made.draws)} draws of the scene's statistics is "
-            f"within {made.error:.2g} (their spread {spread:.2g}), beyond the tolerance "
-            f"{advice.scene.tolerance:g}: a measured height map ([surface] topography) answers "
-            "for the surface itself")
+    ratios, tolerance = made.ratios, advice.scene.tolerance
+    spread = (max(ratios) - min(ratios)) / np.mean(ratios)
+    notes = ([] if made.error <= tolerance else
+             [f"the surface solved whole on {len(made.draws)} draws of the scene's statistics is "
+              f"within {made.error:.2g} (the draws' spread {spread:.2g}), beyond the tolerance "
+              f"{tolerance:g}: a measured height map ([surface] topography) answers for the "
+              "surface itself"])
+    if made.sample - 1.0 > tolerance:
+        notes.append(f"the draws' {made.draws[0].scene.summits} caps stand for a large surface "
+                     f"only roughly: summed on the table's law their F_max per summit is "
+                     f"{made.sample:.3g} times GW's integral's (the few highest set it); that "
+                     "the interaction measured on them carries over is not measured here")
     return {"model": advice.choice, "value": made.f_max, "value_si": made.f_max * to_si,
-            "unit": unit, "error": made.error, "note": note,
+            "unit": unit, "error": made.error, "notes": notes, "resolution": made.coarse,
+            "sample": made.sample,
             "files": "surface/whole_curves.csv",
-            "how": f"the scene's statistics made explicit as the measured map's surfaces are: "
+            "how": f"GW's integral with the table's law and the ground counted once "
+                   f"({made.gw:.4g}) times the ratio of the surface solved whole to the sum over "
+                   f"the same caps with the ground counted once, on the scene's "
+                   f"statistics made explicit as the measured map's surfaces are: "
                    f"{len(made.draws)} draws of {made.draws[0].scene.summits} caps at the "
-                   f"summits' zeta and sigma R eta, solved whole ({ACCURACY}); the value is "
-                   "their mean, the error the largest one's own estimate plus the spread "
-                   "between them",
+                   f"summits' zeta and sigma R eta, solved whole ({ACCURACY}); the error the "
+                   "table's, the larger whole surface's own estimate and the spread of the "
+                   "ratio between the draws (with two draws about twice the standard error of "
+                   "their mean, not a bound)",
             "draws": [{"seed": d.scene.seed, "pixel_sqrt_R_eps": d.scene.pixel,
-                       "f_max": d.models["whole"].f_max,
+                       "f_max_whole": d.models["whole"].f_max,
+                       "f_max_cells": d.models["gw_cells"].f_max, "ratio": ratio,
                        "estimate_relative": d.estimate / d.models["whole"].f_max,
                        "jumps": list(d.models["whole"].jumps),
-                       "seconds": d.models["whole"].seconds} for d in made.draws]}
+                       "seconds": d.models["whole"].seconds}
+                      for d, ratio in zip(made.draws, ratios)]}
 
 
 def _explicit_curves(advice, made):
-    """CSV of the whole surfaces' approach and retraction of `made`: each draw's mean separation
-    d (in the summits' σ_s and in m) and F̄ per summit (2πRΔγ; < 0 tensile) and per nominal
-    area (Pa)."""
+    """CSV of the whole surfaces' approach and retraction on each draw of `made`: d, from the
+    caps' mean height plane (GW's d), in the summits' σ_s and in m, and the force per summit
+    on the draw (2πRΔγ; < 0 tensile) and per its area (Pa): the draw's own, 16 caps'."""
+    from gw.explicit.compare import visible
+
     to_si, _ = si_unit(advice.scene)
     lines = ["seed,d_over_sigma_s,d_m,F_approach,F_retraction,F_approach_Pa,F_retraction_Pa"]
     for draw in made.draws:
         whole, sigma_m = draw.models["whole"], draw.scene.zeta * advice.scene.scales.eps
+        topography, caps = draw.scene.surface()
+        # F̄ is per summit not covered by another cap; the scene's η counts every cap drawn
+        shown = visible(caps, topography.size, draw.scene.periodic).sum() / caps.z.size
         retraction = (np.full(whole.d.size, np.nan) if whole.retraction is None
                       else whole.retraction)
         for d, up, down in zip(whole.d, whole.approach, retraction):
             lines.append(f"{draw.scene.seed},{d:.9g},{d * sigma_m:.9g},{up:.9g},{down:.9g},"
-                         f"{up * to_si:.9g},{down * to_si:.9g}")
+                         f"{up * to_si * shown:.9g},{down * to_si * shown:.9g}")
     return "\n".join(lines) + "\n"
 
 

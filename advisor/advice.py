@@ -449,7 +449,7 @@ def _advise_surface(scene, measure=False, say=None):
                cost["corrected"]),
         _model("GW, the table of solved laws", f_table, (TABLE, GROUND, INTERACTION) + measured,
                size, cost.get("table")),
-        _model("GW, the table, the ground counted once", f_once, (TABLE, INTERACTION)
+        _model(GW_ONCE, f_once, (TABLE, INTERACTION)
                + measured, size, cost.get("once")))
     if interacting:  # each summit at its own place and height, all of the counted mean R
         models += (_model(INTERACTING, None, (TABLE, FAR_FIELD, RADII), size, None),)
@@ -590,30 +590,65 @@ def _measured_here(unbounded, mu, zeta, sigma_r_eta, say=None):
     return Effect(unbounded.name, found.size, found.uncertainty, how), draws
 
 
+#: The GW model whose F̄max the surface solved whole on a scene's statistics corrects.
+GW_ONCE = "GW, the table, the ground counted once"
+
+
 @dataclass(frozen=True)
 class MadeExplicit:
-    """The surface solved whole on a GW scene's statistics (σ, R, η) made explicit as the
-    measured map's surfaces are: `draws`, the `gw.explicit.compare.Comparison`s of its
-    MAP_SEEDS surfaces of MAP_SUMMITS caps at the summits' ζ and σRη (`summits_point`), solved
-    whole at the map's accuracy. `f_max`: the mean of their whole surfaces' F̄max [2πRΔγ per
-    summit]; `error`: relative to it, the largest whole surface's own estimate plus the spread
-    between the draws (the sample's share, as the measured map counts it)."""
+    """The surface solved whole, for a GW scene given by σ, R, η: GW's integral with the table's
+    law and the ground counted once (`gw`, F̄max per summit of the scene's statistics) times
+    the ratio of the whole surface's F̄max to that of the sum over the same caps with the ground
+    counted once (the interaction, the effect that model leaves out), measured on the `draws`
+    of its statistics made explicit (`gw.explicit.compare.Comparison`s of MAP_SEEDS surfaces of
+    MAP_SUMMITS caps at the summits' ζ and σRη, `summits_point`, solved whole at the map's
+    accuracy), as the measured map measures it. The draws' own F̄max is not the answer: on 16
+    caps it rests on the few highest, far above a large surface's where ζ is large (`sample`).
+    `error`: relative, the table's stated error (`table_error`) plus the largest whole
+    surface's own relative estimate plus the spread of the ratio between the draws (the
+    sample's share; with two draws about twice the standard error of their mean, not a bound).
+    `coarse`: the whole-surface solver's resolution message for each draw it flags
+    (`gw.explicit.whole.resolution`)."""
 
     draws: tuple
+    gw: float
+    table_error: float
 
     @property
-    def values(self):
-        """Each draw's whole-surface F̄max [2πRΔγ per summit]."""
-        return [d.models["whole"].f_max for d in self.draws]
+    def ratios(self):
+        """Each draw's F̄max of the surface solved whole over that of the sum on its caps with
+        the ground counted once."""
+        return [d.models["whole"].f_max / d.models["gw_cells"].f_max for d in self.draws]
 
     @property
     def f_max(self):
-        return float(np.mean(self.values))
+        return float(self.gw * np.mean(self.ratios))
 
     @property
     def error(self):
         own = max(d.estimate / d.models["whole"].f_max for d in self.draws)
-        return float(own + (max(self.values) - min(self.values)) / abs(self.f_max))
+        ratios = self.ratios
+        return float(self.table_error + own + (max(ratios) - min(ratios)) / np.mean(ratios))
+
+    @property
+    def sample(self):
+        """The draws' F̄max of the sum over their caps against GW's integral on the same
+        statistics (both per summit, the table's law): near 1 where 16 caps stand for a large
+        surface; far above where the few highest set their strength (large ζ)."""
+        return float(np.mean([d.models["gw_sum"].f_max for d in self.draws])
+                     / np.mean([d.models["gw_solved"].f_max for d in self.draws]))
+
+    @property
+    def coarse(self):
+        from gw.explicit.whole import resolution
+
+        found = []
+        for draw in self.draws:
+            topography = draw.scene.surface()[0]
+            check = resolution(topography, draw.scene.adhesion)
+            if check.coarse:
+                found.append(f"draw {draw.scene.seed}: {check.message(topography.pixel)}")
+        return found
 
 
 def run(advice, *, solve=None, progress=None):
@@ -622,15 +657,17 @@ def run(advice, *, solve=None, progress=None):
     `Answer` of the interacting asperities or the surface solved whole on a scene's height map
     (`default`, a free patch, as `gw explicit` solves it; `progress(fraction)` as the whole
     surface goes), the `MadeExplicit` surface of a GW scene given by σ, R, η (on the draws the
-    advice measured, else solved now; `progress` after each), or None for a closed form or the
-    table (their value is the model's). `InputError` where it cannot be run (`check_runnable`).
-    """
+    advice measured at the summits' point, else solved now; `progress` after each), or None
+    for a closed form or the table (their value is the model's). `InputError` where it cannot
+    be run (`check_runnable`)."""
     scene = advice.scene
     check_runnable(advice)
     if advice.choice == WHOLE and "topography" not in scene.surface:
         from gw.explicit.measured_map import explicit_draws
 
-        return MadeExplicit(advice.explicit or explicit_draws(*summits_point(scene), progress))
+        draws = advice.explicit or explicit_draws(*summits_point(scene), progress)
+        table = next(e for e in advice.effects if e.name == TABLE)
+        return MadeExplicit(draws, _value(advice, GW_ONCE), table.size)
     if advice.choice in SURFACE_MODELS:
         return _on_the_map(scene, SURFACE_MODELS[advice.choice], progress)
     accuracy = SOLVES.get(advice.choice)
@@ -658,6 +695,8 @@ def check_runnable(advice):
         try:
             if advice.choice != WHOLE:
                 raise InputError("it needs the summits' places")
+            if _value(advice, GW_ONCE) is None:
+                raise InputError("it corrects GW with the table's law, which has no value here")
             measurable(*summits_point(scene))
         except InputError as exc:
             raise InputError(f"surface.sigma, surface.density: --run: the model chosen, "
@@ -671,6 +710,11 @@ def check_runnable(advice):
         check_map(scene.topography(), _adhesion(scene))
     except InputError as exc:
         raise InputError(f"surface.topography: {exc}") from None
+
+
+def _value(advice, name):
+    """The value of the advice's model `name`."""
+    return next(m.value for m in advice.models if m.name == name)
 
 
 def _why_not_gw(advice):
