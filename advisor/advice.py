@@ -255,6 +255,9 @@ def _chosen(scene, effects, models, otherwise, solves=None, explicit=()):
 #: The models that solve the whole scene, by name: the accuracy preset each runs (`run`).
 SOLVES = {"BEM draft, the whole scene": "draft", "BEM default, the whole scene": "default",
           "BEM fine, the whole scene": "fine"}
+#: A map reading whose caps' summed F̄max is more than this times GW's integral says that its
+#: caps stand for a large surface only roughly (`_sample_clause`). Not pinned by a test.
+SAMPLE_ROUGHLY = 1.25
 #: Effect names.
 TABLE, DRAFT = "the table of solved laws instead of a solve", "BEM draft instead of default"
 DEFAULT = "BEM default instead of fine"
@@ -552,7 +555,18 @@ def _read_off_map(name, mu, zeta, sigma_r_eta):
                   f"read from the measured map shipped with the package: the largest error of "
                   f"{what} against the surface solved whole, over the {found.surfaces} surfaces "
                   f"around the scene's summits (mu {mu:.3g}, zeta {zeta:.3g}, sigma R eta "
-                  f"{sigma_r_eta:.3g}: {around})")
+                  f"{sigma_r_eta:.3g}: {around})" + _sample_clause(found.sample))
+
+
+def _sample_clause(sample):
+    """What a reading's `sample` (`measured_map.MeasuredError.sample`) says, where its caps do
+    not stand for a large surface (their summed F̄max beyond SAMPLE_ROUGHLY of GW's)."""
+    if sample is None or sample <= SAMPLE_ROUGHLY:
+        return ""
+    return (f"; there the map's 16 caps stand for a large surface only roughly: their F_max per "
+            f"summit, summed without interaction, is up to {sample:.3g} times GW's integral "
+            "(their few highest set it); benchmarks/results/map_sample.md measures whether "
+            "the error carries over")
 
 
 def _measured_here(unbounded, mu, zeta, sigma_r_eta, say=None):
@@ -583,7 +597,7 @@ def _measured_here(unbounded, mu, zeta, sigma_r_eta, say=None):
     found = measured_from(model, draws)
     how = (f"computed for this scene: the largest error of {what} against the surface solved "
            f"whole, on {found.surfaces} GW surfaces made explicit at its mu, zeta, sigma R eta "
-           f"({MAP_SUMMITS} caps each, as the measured map's)")
+           f"({MAP_SUMMITS} caps each, as the measured map's)" + _sample_clause(found.sample))
     if found.size is None:
         return Effect(unbounded.name, None, None, how, f"{what} found no equilibrium before "
                       "the total force turned compressive on one of them"), draws

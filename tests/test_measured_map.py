@@ -13,6 +13,7 @@ from gw.explicit.measured_map import (
     measurable,
     measure_at,
     measured_error,
+    sample_ratio,
     shipped_map,
 )
 
@@ -110,6 +111,29 @@ def test_the_compact_map_keeps_each_error_and_drops_a_path_that_stopped_in_tensi
     assert surface["errors"] == {"gw_cells": 0.03, "interacting": None}
     assert surface["estimate"] == pytest.approx(0.01)
     assert compact["axes"] == {"mu": [1.0], "zeta": [2.0], "sigma_r_eta": [0.05]}
+
+
+def test_a_reading_gives_the_largest_sample_ratio_around_it(grid):
+    """`sample`: the caps' summed F̄max against GW's integral, (1 + e_sum)/(1 + e_GW) from the
+    errors against the whole surface, the largest over the surfaces read; none where a surface
+    lacks either."""
+    for k, s in enumerate(grid["surfaces"]):
+        s["errors"] |= {"gw_sum": 0.1 * k, "gw_solved": -0.5}
+    found = measured_error("gw_cells", mu=0.3, zeta=0.5, sigma_r_eta=0.05, record=grid)
+    assert sample_ratio(grid["surfaces"][1]["errors"]) == pytest.approx(1.1 / 0.5)
+    assert found.sample == pytest.approx(1.1 / 0.5)  # draws 0 and 1 of the first point
+    grid["surfaces"][0]["errors"]["gw_sum"] = None
+    assert measured_error("gw_cells", mu=0.3, zeta=0.5, sigma_r_eta=0.05,
+                          record=grid).sample is None
+
+
+def test_the_shipped_maps_caps_stand_for_a_large_surface_where_zeta_is_small():
+    """The sample ratio of the shipped map against 16 Gaussian heights drawn here, summed on
+    the table's law (no solve): near 1 at ζ = 0.5 (1.05 on 40 draws at μ = 0.3), far above at
+    ζ = 12 (136 there): the few highest caps set a small surface's F̄max."""
+    found = {zeta: measured_error("gw_sum", mu=0.3, zeta=zeta, sigma_r_eta=0.05).sample
+             for zeta in (0.5, 12.0)}
+    assert 0.8 < found[0.5] < 1.5 and found[12.0] > 20
 
 
 def test_the_shipped_map_is_what_the_solver_gives_now():

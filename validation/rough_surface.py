@@ -281,7 +281,11 @@ def section(summary):
               f"outside the map (μ {min(axes['mu']):g}-{max(axes['mu']):g}, ζ "
               f"{min(axes['zeta']):g}-{max(axes['zeta']):g}). ✗: every surface around beyond "
               f"{100 * HOLDS:g} % (fails); ?: some (open, between grid points that disagree); "
-              "no mark: none (holds).", "",
+              "no mark: none (holds). '16 caps / GW': the largest, over the surfaces read, of "
+              "their caps' F̄max summed without interaction against GW's integral on their "
+              "statistics: near 1 the map's 16 caps stand for a large surface; far above, their "
+              "few highest set F̄max, and whether the errors carry over to a large surface is "
+              "what `benchmarks/results/map_sample.md` measures.", "",
               _gw_itself_table(found), "",
               f"At the {len(rows)} points inside the map "
               f"({len(rows) * len(found['sigma_r_eta'])} readings): {said}. Where GW's sum "
@@ -318,7 +322,8 @@ def gw_itself(mus, sigmas=(0.5, 1.0, 2.0)):
     """At each (μ, σ) of the paper-vs-solved table (ζ = σ/ε, ω = 1) and each σRη of the shipped
     measured map where ω ≈ 1 (OMEGA_ONE; the paper gives none): each of MAP_MODELS' F̄max error
     against the surface solved whole over the map's surfaces around the point, its smallest
-    and largest |error| (`gw.explicit.measured_map.measured_error`); None outside the map."""
+    and largest |error| (`gw.explicit.measured_map.measured_error`); None outside the map; and
+    the largest `sample` ratio around it (the caps' summed F̄max against GW's integral)."""
     from gw.explicit.measured_map import measured_error, shipped_map
     from gw.surface import omega_mccool
 
@@ -330,9 +335,12 @@ def gw_itself(mus, sigmas=(0.5, 1.0, 2.0)):
             read = {model: [measured_error(model, mu=mu, zeta=sigma / EPS_NM, sigma_r_eta=sre,
                                            record=record) for sre in densities]
                     for model in MAP_MODELS}
+            samples = [r.sample for r in read[next(iter(MAP_MODELS))]
+                       if r is not None and r.sample is not None]
             rows.append({"mu": mu, "sigma_nm": sigma, "zeta": sigma / EPS_NM, "errors": {
                 model: [None if r is None or r.size is None else [r.least, r.size]
-                        for r in found] for model, found in read.items()}})
+                        for r in found] for model, found in read.items()},
+                "sample": max(samples) if samples else None})
     return {"rows": rows, "sigma_r_eta": densities, "provenance": record["provenance"],
             "axes": record["axes"]}
 
@@ -348,8 +356,9 @@ def _gw_itself_table(found):
     where every surface around is beyond HOLDS, ? where some are."""
     densities = found["sigma_r_eta"]
     head = "| μ | σ [nm] | ζ | " + " | ".join(f"{name}, σRη = {d:g}" for name in
-                                             MAP_MODELS.values() for d in densities) + " |"
-    lines = [head, "|---|---|---|" + "---|" * (len(MAP_MODELS) * len(densities))]
+                                             MAP_MODELS.values() for d in densities) + \
+        " | 16 caps / GW |"
+    lines = [head, "|---|---|---|" + "---|" * (len(MAP_MODELS) * len(densities) + 1)]
     marks = {"holds": "", "fails": " ✗", "open": " ?"}
     for row in found["rows"]:
         cells = []
@@ -361,8 +370,9 @@ def _gw_itself_table(found):
                     least, largest = value
                     cells.append(f"{100 * least:.1f}-{100 * largest:.1f} %"
                                  + marks[_verdict(least, largest)])
+        sample = "—" if row.get("sample") is None else f"{row['sample']:.3g}"
         lines.append(f"| {row['mu']:g} | {row['sigma_nm']:g} | {row['zeta']:.3g} | "
-                     + " | ".join(cells) + " |")
+                     + " | ".join(cells) + f" | {sample} |")
     return "\n".join(lines)
 
 

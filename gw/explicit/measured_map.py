@@ -47,7 +47,11 @@ class MeasuredError:
     their whole surfaces' relative estimate plus the spread of the model's error between
     their draws; NaN where none was solved), `around` (each axis's bracketing values), and
     `least`, the smallest |error| over the same surfaces (None with `size`): where even it is
-    beyond a bound, every surface around the point is."""
+    beyond a bound, every surface around the point is. `sample`: the largest over the same
+    surfaces of their caps' F̄max summed without interaction against GW's integral on the same
+    statistics (`sample_ratio`): near 1 where the map's caps stand for a large surface, far above
+    where their few highest set F̄max (large ζ; benchmarks/results/map_sample.md measures whether
+    the errors carry over there)."""
 
     size: float | None
     uncertainty: float
@@ -55,6 +59,7 @@ class MeasuredError:
     around: dict
     missing: tuple = ()
     least: float | None = None
+    sample: float | None = None
 
 
 def map_pixel(mu):
@@ -121,9 +126,11 @@ def measured_from(model, draws):
                                  if settled(curve.stopped, curve.approach) else None}})
     least, size = _range([d["errors"][model] for d in found])
     scene = draws[0].scene
+    samples = [sample_ratio(d.errors) for d in draws]
     return MeasuredError(size, _uncertainty(model, found), len(draws),
                          {"mu": [scene.mu], "zeta": [scene.zeta],
-                          "sigma_r_eta": [scene.sigma_r_eta]}, (), least)
+                          "sigma_r_eta": [scene.sigma_r_eta]}, (), least,
+                         None if None in samples else max(samples))
 
 
 def measure_at(model, *, mu, zeta, sigma_r_eta, progress=None):
@@ -204,7 +211,19 @@ def measured_error(model, *, mu, zeta, sigma_r_eta, record=None):
     for s in near:
         points.setdefault(tuple(s[k] for k in AXES), []).append(s)
     uncertainty = max((_uncertainty(model, draws) for draws in points.values()), default=np.nan)
-    return MeasuredError(size, uncertainty, len(near), around, missing, least)
+    samples = [sample_ratio(s["errors"]) for s in near]
+    return MeasuredError(size, uncertainty, len(near), around, missing, least,
+                         max(samples) if samples and None not in samples else None)
+
+
+def sample_ratio(errors):
+    """A map surface's F̄max of the sum over its caps (no interaction) against GW's integral on
+    its statistics, from its `errors` (each model's against the whole surface); None where
+    either has no answer."""
+    summed, integral = errors.get("gw_sum"), errors.get("gw_solved")
+    if summed is None or integral is None:
+        return None
+    return (1.0 + summed) / (1.0 + integral)
 
 
 def _range(errors):
