@@ -29,8 +29,8 @@ PROG = "python -m advisor"
 OWNER = PROG
 
 
-def build_parser():
-    parser = Parser(prog=PROG, description=__doc__)
+def build_parser(prog=PROG):
+    parser = Parser(prog=prog, description=__doc__)
     parser.add_argument("scene", help="the scene file (TOML; advisor/scene.py shows the keys)")
     parser.add_argument("--json", action="store_true", help="print the advice as JSON")
     parser.add_argument("--run", action="store_true",
@@ -43,8 +43,10 @@ def build_parser():
     return parser
 
 
-def main(argv=None):
-    parser = build_parser()
+def main(argv=None, prog=PROG):
+    """The advisor's command line (`prog`: the name its messages give it, e.g. `python -m
+    fem_asperity scene`, which hands its command line over)."""
+    parser = build_parser(prog)
     args = parser.parse_args(argv)
     if args.run != (args.out is not None):
         parser.error("--run and --out go together: the model chosen is run into --out")

@@ -1,9 +1,13 @@
-"""Single asperity: `python -m fem_asperity laws|scales|curve|sweep|onset` (each with --help).
+"""Single asperity: `python -m fem_asperity laws|scales|curve|sweep|onset|scene` (each with
+--help).
 
 laws: the paper's closed-form events; scales: E*, the Tabor parameter and the natural scales
 from SI inputs; curve: approach and retraction solved by FE or boundary integral; sweep: many
-curves over mu in parallel (stored, resumable); onset: the smallest mu with a jump-in."""
+curves over mu in parallel (stored, resumable); onset: the smallest mu with a jump-in; scene: the
+scene advisor (`python -m advisor`), a TOML scene in, the cheapest model within its tolerance
+out."""
 
+import argparse
 import json
 import sys
 import warnings
@@ -137,6 +141,11 @@ def build_parser():
                                                     "sweep.json")
     sweep.add_argument("--json", action="store_true", help="print the events as a JSON list")
 
+    scene = commands.add_parser("scene", add_help=False,
+                                help="the scene advisor: a TOML scene in, the cheapest model "
+                                     "within its tolerance out (python -m advisor; scene --help)")
+    scene.add_argument("advisor_arguments", nargs=argparse.REMAINDER,
+                       help="FILE [--json] [--run --out DIR]: as python -m advisor")
     onset = commands.add_parser("onset", help="smallest mu with a jump-in (displacement control)")
     onset.add_argument("--method", choices=METHODS, default="bem",
                        help="solver of each curve (default: %(default)s)")
@@ -396,10 +405,21 @@ def _onset(args, parser):
 
 
 def main(argv=None):
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["scene"]:  # before parsing: the advisor's own options, --help among them
+        return _scene(argv[1:])
     parser = build_parser()
     args = parser.parse_args(argv)
     return {"laws": _laws, "scales": _scales, "curve": _curve, "sweep": _sweep,
             "onset": _onset}[args.command](args, parser) or 0
+
+
+def _scene(argv):
+    """`scene`: the advisor's own command line. The advisor sits above fem_asperity and gw
+    (docs/ARCHITECTURE.md), so only the command line is handed over, here, when asked for."""
+    from advisor.__main__ import main as advise
+
+    return advise(argv, prog=f"{PROG} scene")
 
 
 if __name__ == "__main__":

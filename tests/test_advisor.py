@@ -282,6 +282,27 @@ def test_a_rough_surface_scene_measures_each_law_and_says_what_gw_leaves_out(tmp
     assert len(result["resolution"]) == 2  # pixel 0.2: their height steps pass 0.5 eps
 
 
+def test_fem_asperity_scene_is_the_advisors_command_line(capsys):
+    """`python -m fem_asperity scene FILE ...` (the issue's name for it) hands its command line
+    to `python -m advisor`: the same advice, its own name in usage and errors."""
+    from advisor.__main__ import main as advisor_main
+    from fem_asperity.__main__ import main as fem_main
+
+    scene = str(EXAMPLES / "mems_rough_surface.toml")
+    def advice(printed):  # but the models' wall times
+        record = json.loads(printed)
+        return record | {"models": [{k: v for k, v in m.items() if k != "cost_s"}
+                                    for m in record["models"]]}
+
+    assert advisor_main([scene, "--json"]) == 0
+    direct = advice(capsys.readouterr().out)
+    assert fem_main(["scene", scene, "--json"]) == 0
+    assert advice(capsys.readouterr().out) == direct
+    with pytest.raises(SystemExit):
+        fem_main(["scene", "--help"])
+    assert capsys.readouterr().out.startswith("usage: python -m fem_asperity scene")
+
+
 def test_the_text_output_gives_the_scene_and_each_effects_how_by_number(capsys):
     """The scene's μ and tolerance first; the effects' table with each 'how' cut to its
     first clause, the whole of it below, by number, with why an effect is not bounded."""
